@@ -1,0 +1,310 @@
+#include "common/map/semantic_map.hpp"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/config/config_reader.hpp"
+
+namespace slamer {
+namespace {
+
+constexpr std::array<uint8_t, 3> kIsmUnknown{205, 205, 205};
+constexpr std::array<uint8_t, 3> kIsmFree{254, 254, 254};
+
+std::string resolve(const ConfigReader& reader, const std::string& path) {
+  if (path.empty() || std::filesystem::path(path).is_absolute()) {
+    return path;
+  }
+  return (std::filesystem::path(reader.directory()) / path).lexically_normal().string();
+}
+
+cv::Mat read_image(const ConfigReader& reader, std::string_view key, const std::string& path) {
+  if (path.empty()) {
+    reader.fail(key, "missing (this key is required)");
+  }
+  const std::string full = resolve(reader, path);
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(full, error)) {
+    reader.fail(key, "image '" + full + "' does not exist");
+  }
+  // Only the map_server formats reach OpenCV, whatever the file is named:
+  // imread sniffs the content and would hand other bytes to a dozen decoders.
+  char magic[8] = {};
+  std::ifstream(full, std::ios::binary).read(magic, sizeof(magic));
+  const bool png = std::memcmp(magic, "\x89PNG\r\n\x1a\n", 8) == 0;
+  const bool netpbm = magic[0] == 'P' && (magic[1] == '2' || magic[1] == '3' || magic[1] == '5' || magic[1] == '6');
+  if (!png && !netpbm) {
+    reader.fail(key, "image '" + full + "' is not a PGM/PPM or PNG file");
+  }
+  cv::Mat image;
+  try {
+    image = cv::imread(full, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    image = cv::Mat();
+  }
+  if (image.empty()) {
+    reader.fail(key, "cannot decode image '" + full + "' (not a PGM/PNG OpenCV can read?)");
+  }
+  if (image.depth() != CV_8U) {
+    reader.fail(key,
+                "image '" + full + "' has " + std::to_string(image.elemSize1() * 8) + "-bit channels; 8-bit expected");
+  }
+  return image;
+}
+
+struct MapServerFile {
+  std::string image;
+  double resolution = 0.0;
+  std::vector<double> origin;
+  double occupied_thresh = 0.65;
+  double free_thresh = 0.196;
+  bool negate = false;
+  std::string mode = "trinary";
+};
+
+// Reads the map_server keys of `reader` and fills geometry and occupancy.
+void read_map_server(const ConfigReader& reader, MapServerFile* file, SemanticMap* map) {
+  reader.require("image");
+  reader.require("resolution");
+  reader.require("origin");
+  reader.read("image", &file->image);
+  reader.read("resolution", &file->resolution, positive());
+  reader.read("origin", &file->origin, {}, 3);
+  reader.read("occupied_thresh", &file->occupied_thresh, probability());
+  reader.read("free_thresh", &file->free_thresh, probability());
+  std::string negate = "0";  // map_server writes 0/1; true/false are accepted too
+  reader.read_choice("negate", &negate, {"0", "1", "false", "true"});
+  file->negate = negate == "1" || negate == "true";
+  reader.read_choice("mode", &file->mode, {"trinary", "scale", "raw"});
+  if (file->free_thresh > file->occupied_thresh) {
+    reader.fail("free_thresh", "must not exceed occupied_thresh (" + std::to_string(file->occupied_thresh) + ")");
+  }
+  const cv::Mat image = read_image(reader, "image", file->image);
+  map->geometry.width = image.cols;
+  map->geometry.height = image.rows;
+  map->geometry.resolution = file->resolution;
+  map->geometry.origin = {file->origin[0], file->origin[1], wrap_angle(file->origin[2])};
+  map->occupancy.assign(map->geometry.size(), Occupancy::kUnknown);
+  const int channels = image.channels();
+  for (int row = 0; row < image.rows; ++row) {
+    const uint8_t* pixel = image.ptr<uint8_t>(row);
+    for (int col = 0; col < image.cols; ++col, pixel += channels) {
+      // map_server: mean of the colour channels; alpha 0 means unknown.
+      const int colour_channels = channels == 4 ? 3 : channels == 2 ? 1 : channels;
+      double sum = 0.0;
+      for (int c = 0; c < colour_channels; ++c) {
+        sum += pixel[c];
+      }
+      if ((channels == 4 && pixel[3] == 0) || (channels == 2 && pixel[1] == 0)) {
+        continue;
+      }
+      const double mean = sum / colour_channels;
+      const double occupied_probability = file->negate ? mean / 255.0 : (255.0 - mean) / 255.0;
+      // "raw" images hold occupancy in percent (0 free .. 100 occupied, above that unknown).
+      const double probability = file->mode == "raw" ? (mean <= 100.0 ? mean / 100.0 : -1.0) : occupied_probability;
+      Occupancy cell = Occupancy::kUnknown;
+      if (probability < 0.0) {
+        cell = Occupancy::kUnknown;
+      } else if (probability > file->occupied_thresh) {
+        cell = Occupancy::kOccupied;
+      } else if (probability < file->free_thresh) {
+        cell = Occupancy::kFree;
+      }
+      map->occupancy[map->geometry.index(col, image.rows - 1 - row)] = cell;
+    }
+  }
+}
+
+std::array<uint8_t, 3> read_color(const ConfigReader& reader, std::string_view key) {
+  std::vector<double> rgb;
+  reader.require(key);
+  reader.read(key, &rgb, in_range(0, 255), 3);
+  for (const double c : rgb) {
+    if (c != static_cast<int>(c)) {
+      reader.fail(key, "colour components must be integers in [0, 255]");
+    }
+  }
+  return {static_cast<uint8_t>(rgb[0]), static_cast<uint8_t>(rgb[1]), static_cast<uint8_t>(rgb[2])};
+}
+
+void check_classes(const ConfigReader& reader, std::string_view key, const std::vector<SemanticClass>& classes) {
+  if (classes.size() > 127) {
+    reader.fail(key, "at most 127 classes are supported");
+  }
+  for (std::size_t i = 0; i < classes.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (classes[i].name == classes[j].name) {
+        reader.fail(key, "class '" + classes[i].name + "' is listed twice");
+      }
+      if (classes[i].rgb == classes[j].rgb) {
+        reader.fail(key, "classes '" + classes[j].name + "' and '" + classes[i].name + "' share a colour");
+      }
+    }
+    if (classes[i].rgb == kIsmUnknown || classes[i].rgb == kIsmFree) {
+      reader.fail(key, "class '" + classes[i].name + "' uses a colour reserved for unknown/free space");
+    }
+  }
+}
+
+// Labels cells from a colour image of the map's size; `ignored` colours carry no label.
+void read_labels(const ConfigReader& reader, std::string_view key, const std::string& path,
+                 const std::vector<std::array<uint8_t, 3>>& ignored, SemanticMap* map) {
+  const cv::Mat image = read_image(reader, key, path);
+  if (image.cols != map->geometry.width || image.rows != map->geometry.height) {
+    reader.fail(key, "semantic image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                         " but the occupancy image is " + std::to_string(map->geometry.width) + "x" +
+                         std::to_string(map->geometry.height));
+  }
+  if (image.channels() != 3 && image.channels() != 4) {
+    reader.fail(
+        key, "semantic image must be a colour image (RGB), it has " + std::to_string(image.channels()) + " channel(s)");
+  }
+  std::map<std::array<uint8_t, 3>, int8_t> lookup;
+  for (std::size_t i = 0; i < map->classes.size(); ++i) {
+    lookup[map->classes[i].rgb] = static_cast<int8_t>(i);
+  }
+  std::map<std::array<uint8_t, 3>, int64_t> unknown_colors;
+  const int channels = image.channels();
+  for (int row = 0; row < image.rows; ++row) {
+    const uint8_t* pixel = image.ptr<uint8_t>(row);
+    for (int col = 0; col < image.cols; ++col, pixel += channels) {
+      const std::array<uint8_t, 3> rgb{pixel[2], pixel[1], pixel[0]};  // OpenCV stores BGR
+      const auto it = lookup.find(rgb);
+      if (it != lookup.end()) {
+        map->labels[map->geometry.index(col, image.rows - 1 - row)] = it->second;
+      } else if (std::find(ignored.begin(), ignored.end(), rgb) == ignored.end()) {
+        ++unknown_colors[rgb];
+        ++map->unknown_color_cells;
+      }
+    }
+  }
+  if (!unknown_colors.empty()) {
+    const auto& [rgb, count] = *std::max_element(unknown_colors.begin(), unknown_colors.end(),
+                                                 [](const auto& a, const auto& b) { return a.second < b.second; });
+    map->warnings.push_back(reader.source() + ": " + std::to_string(map->unknown_color_cells) + " semantic pixels in " +
+                            std::to_string(unknown_colors.size()) + " colour(s) of no class (most: [" +
+                            std::to_string(rgb[0]) + ", " + std::to_string(rgb[1]) + ", " + std::to_string(rgb[2]) +
+                            "] x " + std::to_string(count) + "); they are left unlabelled");
+  }
+}
+
+void label_unlabelled_occupied(const std::string& occupied_class, SemanticMap* map) {
+  const int index = map->class_index(occupied_class);
+  if (index < 0) {
+    return;
+  }
+  for (std::size_t i = 0; i < map->labels.size(); ++i) {
+    if (map->labels[i] < 0 && map->occupancy[i] == Occupancy::kOccupied) {
+      map->labels[i] = static_cast<int8_t>(index);
+    }
+  }
+}
+
+SemanticMap load_ism(const ConfigReader& reader) {
+  SemanticMap map;
+  std::string ogm_yaml;
+  std::string image;
+  std::vector<std::string> objects;
+  reader.read("ogm_info_yaml", &ogm_yaml);
+  reader.require("image");
+  reader.read("image", &image);
+  reader.require("objects");
+  reader.read("objects", &objects);
+  for (const std::string& name : objects) {
+    map.classes.push_back({name, read_color(reader, name + "_color")});
+  }
+  check_classes(reader, "objects", map.classes);
+  reader.check_all_keys_used();
+
+  const ConfigReader ogm = ConfigReader::from_file(resolve(reader, ogm_yaml));
+  MapServerFile file;
+  read_map_server(ogm, &file, &map);
+  ogm.check_all_keys_used();
+  map.labels.assign(map.geometry.size(), -1);
+  read_labels(reader, "image", image, {kIsmUnknown, kIsmFree}, &map);
+  label_unlabelled_occupied("others", &map);
+  return map;
+}
+
+SemanticMap load_map_server(const ConfigReader& reader) {
+  SemanticMap map;
+  MapServerFile file;
+  read_map_server(reader, &file, &map);
+  map.labels.assign(map.geometry.size(), -1);
+  if (reader.has("semantic")) {
+    const ConfigReader semantic = reader.section("semantic");
+    std::string image;
+    semantic.require("image");
+    semantic.read("image", &image);
+    for (const ConfigReader& entry : semantic.list("classes")) {
+      SemanticClass c;
+      entry.require("name");
+      entry.read("name", &c.name);
+      c.rgb = read_color(entry, "color");
+      map.classes.push_back(c);
+    }
+    if (map.classes.empty()) {
+      semantic.fail("classes", "the class table is empty");
+    }
+    check_classes(semantic, "classes", map.classes);
+    std::string occupied_class = map.class_index("others") >= 0 ? "others" : "";
+    semantic.read("occupied_class", &occupied_class);
+    if (!occupied_class.empty() && map.class_index(occupied_class) < 0) {
+      semantic.fail("occupied_class", "'" + occupied_class + "' is not in the class table");
+    }
+    read_labels(semantic, "image", image, {kIsmUnknown, kIsmFree, {255, 255, 255}}, &map);
+    label_unlabelled_occupied(occupied_class, &map);
+  }
+  reader.check_all_keys_used();
+  return map;
+}
+
+}  // namespace
+
+int SemanticMap::class_index(std::string_view name) const {
+  for (std::size_t i = 0; i < classes.size(); ++i) {
+    if (classes[i].name == name) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+std::vector<uint8_t> SemanticMap::occupied_mask() const {
+  std::vector<uint8_t> mask(occupancy.size());
+  for (std::size_t i = 0; i < occupancy.size(); ++i) {
+    mask[i] = occupancy[i] == Occupancy::kOccupied ? 1 : 0;
+  }
+  return mask;
+}
+
+std::vector<uint8_t> SemanticMap::class_mask(int class_index) const {
+  std::vector<uint8_t> mask(labels.size());
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    mask[i] = labels[i] == class_index ? 1 : 0;
+  }
+  return mask;
+}
+
+SemanticMap load_semantic_map(const std::string& yaml_path) {
+  const ConfigReader reader = ConfigReader::from_file(yaml_path);
+  return reader.has("ogm_info_yaml") ? load_ism(reader) : load_map_server(reader);
+}
+
+DistanceField obstacle_distance_field(const SemanticMap& map) {
+  return {map.geometry, map.occupied_mask()};
+}
+
+std::vector<DistanceField> class_distance_fields(const SemanticMap& map) {
+  std::vector<DistanceField> fields;
+  for (std::size_t i = 0; i < map.classes.size(); ++i) {
+    fields.emplace_back(map.geometry, map.class_mask(static_cast<int>(i)));
+  }
+  return fields;
+}
+
+}  // namespace slamer

@@ -1,0 +1,300 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <random>
+
+#include "common/config/config_reader.hpp"
+#include "common/map/distance_field.hpp"
+#include "common/map/likelihood_field.hpp"
+#include "common/map/semantic_map.hpp"
+
+namespace slamer {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TempDir {
+ public:
+  TempDir() {
+    char pattern[] = "/tmp/slamer_map_test_XXXXXX";
+    path_ = mkdtemp(pattern);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(file(name)) << text; }
+
+ private:
+  fs::path path_;
+};
+
+std::string load_error(const std::string& yaml_path) {
+  try {
+    load_semantic_map(yaml_path);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(GridGeometry, CellsWithRotatedOrigin) {
+  GridGeometry g{10, 5, 0.5, {1.0, 2.0, std::numbers::pi / 2}};
+  // Cell (0, 0)'s corner is at (1, 2); the grid's x axis points along world +y.
+  const auto c = g.cell_at({0.9, 2.1});
+  ASSERT_TRUE(c.has_value());
+  EXPECT_EQ(*c, (Cell{0, 0}));
+  const auto far = g.cell_at({0.9 - 0.5 * 4, 2.1 + 0.5 * 9});
+  ASSERT_TRUE(far.has_value());
+  EXPECT_EQ(*far, (Cell{9, 4}));
+  EXPECT_FALSE(g.cell_at({1.1, 2.1}).has_value());  // behind the origin along grid y
+  EXPECT_FALSE(g.cell_at({0.9, 2.1 + 5.0}).has_value());
+  EXPECT_FALSE(g.cell_at({std::nan(""), 2.1}).has_value());
+  const Eigen::Vector2d center = g.cell_center(3, 1);
+  EXPECT_EQ(*g.cell_at(center), (Cell{3, 1}));
+  EXPECT_NEAR(center.x(), 1.0 - 0.75, 1e-12);
+  EXPECT_NEAR(center.y(), 2.0 + 1.75, 1e-12);
+}
+
+TEST(DistanceField, MatchesBruteForceExactly) {
+  std::mt19937 rng(11);
+  for (const auto& [w, h, density] : std::vector<std::tuple<int, int, double>>{
+           {1, 1, 1.0}, {1, 37, 0.1}, {53, 1, 0.05}, {40, 31, 0.02}, {64, 64, 0.001}, {97, 45, 0.3}}) {
+    GridGeometry g{w, h, 0.05, {}};
+    std::vector<uint8_t> target(g.size());
+    std::bernoulli_distribution pick(density);
+    for (uint8_t& t : target) {
+      t = pick(rng) ? 1 : 0;
+    }
+    target[static_cast<std::size_t>(rng() % g.size())] = 1;
+    const DistanceField field(g, target);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        double best = std::numeric_limits<double>::infinity();
+        for (int ty = 0; ty < h; ++ty) {
+          for (int tx = 0; tx < w; ++tx) {
+            if (target[g.index(tx, ty)] != 0) {
+              best = std::min(best, std::hypot(tx - x, ty - y) * 0.05);
+            }
+          }
+        }
+        ASSERT_NEAR(field.at(x, y), best, 1e-5) << w << "x" << h << " at " << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(DistanceField, DiagonalIsEuclideanNotChamfer) {
+  GridGeometry g{200, 200, 0.1, {}};
+  std::vector<uint8_t> target(g.size(), 0);
+  target[g.index(0, 0)] = 1;
+  const DistanceField field(g, target);
+  EXPECT_NEAR(field.at(150, 80), std::hypot(150.0, 80.0) * 0.1, 1e-4);
+  EXPECT_NEAR(field.at(199, 199), std::hypot(199.0, 199.0) * 0.1, 1e-4);
+}
+
+TEST(DistanceField, NoTargetIsInfiniteAndOffMapIsExplicit) {
+  GridGeometry g{5, 5, 1.0, {}};
+  const DistanceField field(g, std::vector<uint8_t>(g.size(), 0));
+  EXPECT_FALSE(field.has_targets());
+  EXPECT_TRUE(std::isinf(field.at(2, 2)));
+  EXPECT_FALSE(field.at_world({-0.5, 1.0}).has_value());
+  EXPECT_TRUE(field.at_world({0.5, 1.0}).has_value());
+}
+
+TEST(LikelihoodField, HandComputedValues) {
+  GridGeometry g{3, 1, 1.0, {}};
+  const DistanceField obstacles(g, {1, 0, 0});
+  LikelihoodFieldOptions options;
+  options.sigma_hit = 0.5;
+  options.z_hit = 0.8;
+  options.z_max = 0.1;
+  options.z_rand = 0.1;
+  options.range_max = 20.0;
+  const LikelihoodField field(obstacles, options);
+  const double norm = 0.8 / (std::sqrt(2.0 * std::numbers::pi) * 0.5);
+  EXPECT_NEAR(field.log_likelihood(0, 0), std::log(norm + 0.1 / 20.0), 1e-6);
+  EXPECT_NEAR(field.log_likelihood(2, 0), std::log(norm * std::exp(-4.0 / (2 * 0.25)) + 0.1 / 20.0), 1e-6);
+  EXPECT_NEAR(field.off_map_log_likelihood(), std::log(0.1 / 20.0), 1e-6);
+  EXPECT_NEAR(field.max_range_log_likelihood(), std::log(0.1 + 0.1 / 20.0), 1e-6);
+  EXPECT_NEAR(field.log_likelihood_at({-3.0, 0.5}), field.off_map_log_likelihood(), 1e-9);
+  options.z_rand = 0.3;  // weights sum to 1.2
+  EXPECT_THROW(LikelihoodField(obstacles, options), std::invalid_argument);
+}
+
+// A 4x3 map image, top row first, as map_server reads it.
+void write_occupancy_pgm(const std::string& path) {
+  cv::Mat image(3, 4, CV_8UC1);
+  const uint8_t rows[3][4] = {{0, 254, 205, 100}, {254, 254, 254, 254}, {0, 0, 254, 160}};
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      image.at<uint8_t>(r, c) = rows[r][c];
+    }
+  }
+  ASSERT_TRUE(cv::imwrite(path, image));
+}
+
+TEST(SemanticMap, MapServerOccupancyWithThresholdsNegateAndYaw) {
+  TempDir dir;
+  write_occupancy_pgm(dir.file("map.pgm"));
+  dir.write("map.yaml",
+            "image: map.pgm\nresolution: 0.1\norigin: [-1.0, 2.0, 0.5]\noccupied_thresh: 0.65\n"
+            "free_thresh: 0.196\nnegate: 0\n");
+  const SemanticMap map = load_semantic_map(dir.file("map.yaml"));
+  ASSERT_EQ(map.geometry.width, 4);
+  ASSERT_EQ(map.geometry.height, 3);
+  EXPECT_DOUBLE_EQ(map.geometry.resolution, 0.1);
+  EXPECT_DOUBLE_EQ(map.geometry.origin.theta, 0.5);
+  const auto at = [&](int x, int y) { return map.occupancy[map.geometry.index(x, y)]; };
+  // Top image row is grid row 2. 0 -> occupied, 254 -> free, 205 -> unknown,
+  // 100 -> p = 0.61 (unknown), 160 -> p = 0.37 (unknown).
+  EXPECT_EQ(at(0, 2), Occupancy::kOccupied);
+  EXPECT_EQ(at(1, 2), Occupancy::kFree);
+  EXPECT_EQ(at(2, 2), Occupancy::kUnknown);
+  EXPECT_EQ(at(3, 2), Occupancy::kUnknown);
+  EXPECT_EQ(at(0, 0), Occupancy::kOccupied);
+  EXPECT_EQ(at(3, 0), Occupancy::kUnknown);
+  EXPECT_TRUE(map.classes.empty());
+
+  dir.write("negated.yaml", "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 1\n");
+  const SemanticMap negated = load_semantic_map(dir.file("negated.yaml"));
+  EXPECT_EQ(negated.occupancy[negated.geometry.index(0, 2)], Occupancy::kFree);
+  EXPECT_EQ(negated.occupancy[negated.geometry.index(1, 2)], Occupancy::kOccupied);
+
+  const DistanceField obstacles = obstacle_distance_field(map);
+  EXPECT_NEAR(obstacles.at(1, 0), 0.0, 1e-6);  // bottom image row: 0, 0, 254, 160
+  EXPECT_NEAR(obstacles.at(2, 0), 0.1, 1e-6);
+  EXPECT_NEAR(obstacles.at(3, 1), std::hypot(2.0, 1.0) * 0.1, 1e-6);
+}
+
+void write_semantic_png(const std::string& path) {
+  // BGR in OpenCV. Row 0 (top): door (255,0,255), glass (0,255,255), free, odd colour.
+  cv::Mat image(3, 4, CV_8UC3, cv::Scalar(254, 254, 254));
+  image.at<cv::Vec3b>(0, 0) = {255, 0, 255};
+  image.at<cv::Vec3b>(0, 1) = {255, 255, 0};
+  image.at<cv::Vec3b>(0, 3) = {10, 20, 30};
+  image.at<cv::Vec3b>(2, 3) = {10, 20, 30};
+  ASSERT_TRUE(cv::imwrite(path, image));
+}
+
+TEST(SemanticMap, SemanticLayerWithClassTable) {
+  TempDir dir;
+  write_occupancy_pgm(dir.file("map.pgm"));
+  write_semantic_png(dir.file("semantic.png"));
+  dir.write("map.yaml",
+            "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n"
+            "semantic:\n  image: semantic.png\n  classes:\n"
+            "    - {name: door, color: [255, 0, 255]}\n"
+            "    - {name: glass_door, color: [0, 255, 255]}\n"
+            "    - {name: others, color: [0, 0, 0]}\n");
+  const SemanticMap map = load_semantic_map(dir.file("map.yaml"));
+  ASSERT_EQ(map.classes.size(), 3u);
+  const auto label = [&](int x, int y) { return map.labels[map.geometry.index(x, y)]; };
+  EXPECT_EQ(label(0, 2), map.class_index("door"));
+  EXPECT_EQ(label(1, 2), map.class_index("glass_door"));
+  EXPECT_EQ(label(1, 1), -1);                         // free
+  EXPECT_EQ(label(0, 0), map.class_index("others"));  // occupied, no colour -> others
+  EXPECT_EQ(map.unknown_color_cells, 2);
+  ASSERT_EQ(map.warnings.size(), 1u);
+  EXPECT_NE(map.warnings[0].find("2 semantic pixels in 1 colour(s) of no class (most: [30, 20, 10] x 2)"),
+            std::string::npos)
+      << map.warnings[0];
+  const std::vector<DistanceField> fields = class_distance_fields(map);
+  ASSERT_EQ(fields.size(), 3u);
+  EXPECT_NEAR(fields[static_cast<std::size_t>(map.class_index("door"))].at(3, 0), std::hypot(3.0, 2.0) * 0.1, 1e-6);
+}
+
+TEST(SemanticMap, IsmYamlFormat) {
+  TempDir dir;
+  write_occupancy_pgm(dir.file("ogm.pgm"));
+  write_semantic_png(dir.file("ism.png"));
+  dir.write("ogm.yaml",
+            "image: ogm.pgm\nresolution: 0.05\norigin: [1, 1, 0]\nnegate: 0\n"
+            "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  dir.write("ism.yaml",
+            "image: ism.png\nogm_info_yaml: ogm.yaml\nobjects: [door, glass_door, do_not_enter_line, others]\n"
+            "door_color: [255, 0, 255]\nglass_door_color: [0, 255, 255]\ndo_not_enter_line_color: [30, 20, 10]\n"
+            "others_color: [0, 0, 0]\n");
+  const SemanticMap map = load_semantic_map(dir.file("ism.yaml"));
+  EXPECT_DOUBLE_EQ(map.geometry.resolution, 0.05);
+  EXPECT_DOUBLE_EQ(map.geometry.origin.x, 1.0);
+  ASSERT_EQ(map.classes.size(), 4u);
+  EXPECT_EQ(map.classes[2].name, "do_not_enter_line");
+  EXPECT_EQ(map.labels[map.geometry.index(3, 2)], map.class_index("do_not_enter_line"));
+  EXPECT_EQ(map.labels[map.geometry.index(0, 0)], map.class_index("others"));
+  EXPECT_EQ(map.unknown_color_cells, 0);
+}
+
+TEST(SemanticMap, BadMapsGiveOneLineNamingFileAndProblem) {
+  TempDir dir;
+  write_occupancy_pgm(dir.file("map.pgm"));
+  write_semantic_png(dir.file("semantic.png"));
+  const std::string yaml = dir.file("bad.yaml");
+
+  dir.write("bad.yaml", "image: missing.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":1: key 'image': image '" + dir.file("missing.pgm") + "' does not exist");
+
+  dir.write("bad.yaml", "image: map.pgm\nresolution: 0\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":2: key 'resolution': expected a number > 0, got '0'");
+
+  dir.write("bad.yaml", "image: map.pgm\nresolution: -0.05\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":2: key 'resolution': expected a number > 0, got '-0.05'");
+
+  dir.write("bad.yaml", "image: map.pgm\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":1: key 'resolution': missing (this key is required)");
+
+  dir.write("bad.yaml", "image: map.pgm\nresolution: 0.1\norigin: [0, 0]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":3: key 'origin': expected a list of 3 numbers, got 2");
+
+  dir.write("bad.yaml", "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0\n");
+  EXPECT_EQ(load_error(yaml).rfind(yaml + ":4: YAML syntax error", 0), 0u) << load_error(yaml);
+
+  EXPECT_EQ(load_error(dir.file("nope.yaml")), dir.file("nope.yaml") + ": cannot open: No such file or directory");
+
+  dir.write("garbage.png", "this is not a png");
+  dir.write("bad.yaml", "image: garbage.png\nresolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml),
+            yaml + ":1: key 'image': image '" + dir.file("garbage.png") + "' is not a PGM/PPM or PNG file");
+  dir.write("truncated.png", std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16));
+  dir.write("bad.yaml", "image: truncated.png\nresolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":1: key 'image': cannot decode image '" + dir.file("truncated.png") +
+                                  "' (not a PGM/PNG OpenCV can read?)");
+
+  cv::imwrite(dir.file("small.png"), cv::Mat(2, 2, CV_8UC3, cv::Scalar(254, 254, 254)));
+  dir.write("bad.yaml",
+            "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nsemantic:\n  image: small.png\n"
+            "  classes: [{name: door, color: [255, 0, 255]}]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":5: key 'semantic.image': semantic image is 2x2 but the occupancy image is 4x3");
+
+  dir.write("bad.yaml",
+            "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nsemantic:\n  image: semantic.png\n"
+            "  classes: [{name: door, color: [255, 0, 255]}, {name: gate, color: [255, 0, 255]}]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":6: key 'semantic.classes': classes 'door' and 'gate' share a colour");
+
+  dir.write("bad.yaml",
+            "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nsemantic:\n  image: semantic.png\n"
+            "  classes: [{name: door, color: [254, 254, 254]}]\n");
+  EXPECT_EQ(load_error(yaml),
+            yaml + ":6: key 'semantic.classes': class 'door' uses a colour reserved for unknown/free space");
+
+  dir.write("bad.yaml", "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nfree_thresh: 0.9\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":4: key 'free_thresh': must not exceed occupied_thresh (0.650000)");
+
+  dir.write("bad.yaml", "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nresolutoin: 0.2\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":4: unknown key 'resolutoin'");
+
+  cv::imwrite(dir.file("deep.png"), cv::Mat(3, 4, CV_16UC1, cv::Scalar(1000)));
+  dir.write("bad.yaml", "image: deep.png\nresolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml),
+            yaml + ":1: key 'image': image '" + dir.file("deep.png") + "' has 16-bit channels; 8-bit expected");
+
+  dir.write("ism.yaml", "image: semantic.png\nogm_info_yaml: map.yaml\nobjects: [door]\n");
+  EXPECT_EQ(load_error(dir.file("ism.yaml")),
+            dir.file("ism.yaml") + ":1: key 'door_color': missing (this key is required)");
+}
+
+}  // namespace
+}  // namespace slamer
