@@ -192,6 +192,16 @@ bool ConfigReader::has(std::string_view key) const {
   return map.IsMap() && map[std::string(key)].IsDefined();
 }
 
+std::vector<std::string> ConfigReader::keys() const {
+  std::vector<std::string> names;
+  if (node_.IsMap()) {
+    for (const auto& entry : node_) {
+      names.push_back(entry.first.as<std::string>("?"));
+    }
+  }
+  return names;
+}
+
 void ConfigReader::require(std::string_view key) const {
   if (!has(key)) {
     fail(key, "missing (this key is required)");

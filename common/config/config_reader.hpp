@@ -61,6 +61,9 @@ class ConfigReader {
   void read(std::string_view key, std::vector<std::string>* value) const;
 
   bool has(std::string_view key) const;
+  // The keys of this section in file order (for tables keyed by name); reading
+  // them is what marks them used.
+  std::vector<std::string> keys() const;
   void require(std::string_view key) const;  // throws if absent
 
   // A nested mapping; an absent key gives an empty section (all defaults).

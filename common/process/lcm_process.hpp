@@ -57,6 +57,11 @@ class LcmProcess {
   template <class Msg>
   bool publish(const std::string& channel, const Msg& msg);
 
+  // Publishes already encoded bytes (e.g. a message read from a log).
+  bool publish_raw(const std::string& channel, const std::vector<uint8_t>& bytes) {
+    return publish_bytes(channel, bytes);
+  }
+
   // Calls `callback` every `period_s` seconds of steady time from run().
   void every(double period_s, std::function<void()> callback);
 

@@ -3,19 +3,48 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <set>
 
 #include "common/config/config_reader.hpp"
+#include "common/map/semantic_map.hpp"
+#include "common/robot/robot_options.hpp"
+#include "tools/sim/floor_plan.hpp"
+#include "tools/sim/sim_config.hpp"
+#include "tools/sim/world.hpp"
 #include "tools/status/status_table.hpp"
 
 namespace slamer {
 namespace {
 
+// A world loads with everything it names: map, robot, and the truth fitted to the map.
+void load_world(const std::string& path) {
+  const auto world = load_options<WorldOptions>(path);
+  load_options<RobotOptions>(world.robot_path);
+  const TrueWorld truth(load_semantic_map(world.map_path), world, path);
+  EXPECT_GT(truth.door_count(), 0) << path;
+}
+
+void load_map(const std::string& path) {
+  const SemanticMap map = load_semantic_map(path);
+  EXPECT_TRUE(map.warnings.empty()) << path << ": " << (map.warnings.empty() ? "" : map.warnings[0]);
+  EXPECT_EQ(map.unknown_color_cells, 0) << path;
+}
+
 const std::map<std::string, std::function<void(const std::string&)>>& loaders() {
   static const std::map<std::string, std::function<void(const std::string&)>> table = {
       {"slamer-status.yaml", [](const std::string& path) { load_options<StatusProcessConfig>(path); }},
+      {"sim.yaml", [](const std::string& path) { load_options<SimProcessConfig>(path); }},
+      {"robots/icart_mini.yaml", [](const std::string& path) { load_options<RobotOptions>(path); }},
+      {"worlds/small_room.yaml", load_world},
+      {"worlds/paper_indoor.yaml", load_world},
+      {"maps/small_room/plan.yaml", [](const std::string& path) { load_options<FloorPlan>(path); }},
+      {"maps/paper_indoor/plan.yaml", [](const std::string& path) { load_options<FloorPlan>(path); }},
+      {"maps/small_room/map.yaml", load_map},
+      {"maps/paper_indoor/map.yaml", load_map},
   };
   return table;
 }
@@ -31,7 +60,6 @@ TEST(ShippedConfigs, EveryFileLoadsWithItsProgramsLoader) {
     seen.insert(name);
     const auto loader = loaders().find(name);
     ASSERT_NE(loader, loaders().end()) << "config/" << name << " has no loader in " << __FILE__;
-    EXPECT_NO_THROW(loader->second(entry.path().string())) << "config/" << name;
     try {
       loader->second(entry.path().string());
     } catch (const ConfigError& e) {
@@ -40,6 +68,26 @@ TEST(ShippedConfigs, EveryFileLoadsWithItsProgramsLoader) {
   }
   for (const auto& [name, loader] : loaders()) {
     EXPECT_TRUE(seen.count(name) != 0) << "the loader table names config/" << name << ", which does not exist";
+  }
+}
+
+std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The committed map files are exactly what their plan renders to.
+TEST(ShippedConfigs, BundledMapsMatchTheirPlans) {
+  for (const std::string name : {"small_room", "paper_indoor"}) {
+    const std::filesystem::path dir = std::filesystem::path(SLAMER_SOURCE_DIR) / "config/maps" / name;
+    const std::filesystem::path out = std::filesystem::temp_directory_path() / ("slamer_plan_" + name);
+    std::filesystem::create_directories(out);
+    write_floor_plan_map(load_options<FloorPlan>((dir / "plan.yaml").string()), out.string());
+    for (const char* file : {"map.pgm", "semantic.png", "map.yaml"}) {
+      EXPECT_EQ(read_bytes(out / file), read_bytes(dir / file))
+          << "config/maps/" << name << "/" << file << " is stale: run slamer-make-map plan.yaml . in its folder";
+    }
+    std::filesystem::remove_all(out);
   }
 }
 

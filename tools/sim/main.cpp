@@ -1,0 +1,147 @@
+// slamer-sim: the simulated i-Cart mini in a semantic world, live on LCM or
+// straight into an LCM log file.
+#include <unistd.h>
+
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <lcm/lcm-cpp.hpp>
+
+#include "common/process/convert.hpp"
+#include "common/process/lcm_process.hpp"
+#include "common/process/log.hpp"
+#include "tools/sim/sim_config.hpp"
+
+namespace slamer {
+namespace {
+
+// Encodes each output and hands it on with the time a device would deliver it.
+class MessageSink : public SimulatorSink {
+ public:
+  using Emit = std::function<void(const std::string& channel, const std::vector<uint8_t>& bytes, int64_t utime)>;
+  MessageSink(const SimChannels& channels, Emit emit) : channels_(channels), emit_(std::move(emit)) {}
+
+  void on_scan(const LaserScan& scan, int64_t publish_utime) override {
+    send(channels_.lidar, to_message(scan), publish_utime);
+    ++scans_;
+  }
+  void on_encoders(const EncoderSample& s) override {
+    send(channels_.wheel_encoders, make_wheel_encoders(s.utime, s.seq, "sim", s.left, s.right), s.utime);
+  }
+  void on_odometry(const OdometrySample& s) override {
+    send(channels_.odometry, make_odometry(s.utime, s.seq, s.pose, s.v, s.omega), s.utime);
+  }
+  void on_ground_truth(const GroundTruthSample& s) override {
+    send(channels_.ground_truth, make_exact_pose(s.utime, s.pose), s.publish_utime);
+  }
+  int64_t scans() const { return scans_; }
+
+ private:
+  template <class Msg>
+  void send(const std::string& channel, const Msg& msg, int64_t utime) {
+    std::vector<uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
+    msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    emit_(channel, bytes, utime);
+  }
+
+  SimChannels channels_;
+  Emit emit_;
+  int64_t scans_ = 0;
+};
+
+int run_to_log(Simulator& sim, const SimProcessConfig& config, const std::string& path) {
+  lcm::LogFile log(path, "w");
+  if (!log.good()) {
+    throw std::runtime_error("cannot write " + path);
+  }
+  MessageSink sink(config.channels, [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t t) {
+    lcm::LogEvent event;
+    event.timestamp = t;
+    event.channel = channel;
+    event.datalen = static_cast<int32_t>(bytes.size());
+    event.data = const_cast<uint8_t*>(bytes.data());
+    if (log.writeEvent(&event) != 0) {
+      throw std::runtime_error("cannot write to " + path);
+    }
+  });
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  double next_report = 0.0;
+  while (sim.step(sink)) {
+    if (terminal && sim.time() >= next_report) {
+      std::fprintf(stderr, "\rslamer-sim: %7.1f s simulated, path %3.0f%% done", sim.time(), 100.0 * sim.progress());
+      next_report += 5.0;
+    }
+  }
+  if (terminal) {
+    std::fprintf(stderr, "\n");
+  }
+  log_line("slamer-sim", LogLevel::kInfo,
+           "wrote " + std::to_string(sink.scans()) + " scans, " + std::to_string(sim.time()) + " s, to " + path);
+  return 0;
+}
+
+int run_live(Simulator& sim, const SimProcessConfig& config, const std::string& lcm_url, double speed) {
+  LcmProcess process("slamer-sim", lcm_url, config.process);
+  MessageSink sink(config.channels, [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t) {
+    process.publish_raw(channel, bytes);
+  });
+  const int64_t wall_start = now_utime();
+  bool finished = false;
+  process.every(config.sim.step / speed, [&] {
+    // Catch up with the wall clock: every step whose time has come.
+    const double target = static_cast<double>(now_utime() - wall_start) * 1e-6 * speed;
+    while (!finished && sim.time() < target) {
+      finished = !sim.step(sink);
+    }
+    if (finished) {
+      process.log_info("path finished after " + std::to_string(sim.time()) + " s");
+      process.stop();
+    }
+  });
+  return process.run();
+}
+
+}  // namespace
+}  // namespace slamer
+
+int main(int argc, char** argv) {
+  return slamer::process_main(
+      argc, argv, "slamer-sim",
+      "Simulates the i-Cart mini driving a world's scripted path: LIDAR, WHEEL_ENCODERS, ODOMETRY and\n"
+      "GROUND_TRUTH, live on LCM (at --speed times real time) or into an LCM log (--out), the same for\n"
+      "the same seed.",
+      [](slamer::CommandLine& cli) {
+        cli.add_option("world", "FILE", "world file (config/worlds/*.yaml)");
+        cli.add_option("seed", "N", "random seed", "1");
+        cli.add_option("out", "FILE", "write an LCM log instead of publishing live");
+        cli.add_option("speed", "X", "live mode: simulated seconds per wall-clock second", "1");
+      },
+      [](const slamer::CommandLine& cli) {
+        if (!cli.has("world")) {
+          throw slamer::CommandLineError("--world FILE is required");
+        }
+        slamer::SimProcessConfig config;
+        if (cli.has("config")) {
+          config = slamer::load_options<slamer::SimProcessConfig>(cli.get("config"));
+        }
+        const int64_t seed = cli.get_int("seed");
+        const double speed = cli.get_double("speed");
+        if (seed < 0 || !(speed > 0.0)) {
+          throw slamer::CommandLineError("--seed must be >= 0 and --speed > 0");
+        }
+        const std::string world_file = cli.get("world");
+        const auto world_options = slamer::load_options<slamer::WorldOptions>(world_file);
+        const auto robot = slamer::load_options<slamer::RobotOptions>(world_options.robot_path);
+        slamer::SemanticMap map = slamer::load_semantic_map(world_options.map_path);
+        for (const std::string& warning : map.warnings) {
+          slamer::log_line("slamer-sim", slamer::LogLevel::kWarning, warning);
+        }
+        const slamer::TrueWorld world(std::move(map), world_options, world_file);
+        if (!cli.has("out")) {
+          config.sim.start_utime = slamer::now_utime();
+        }
+        slamer::Simulator sim(world, world_options, robot, config.sim, static_cast<uint64_t>(seed));
+        return cli.has("out") ? slamer::run_to_log(sim, config, cli.get("out"))
+                              : slamer::run_live(sim, config, cli.get("lcm-url"), speed);
+      });
+}
