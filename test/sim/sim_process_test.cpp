@@ -2,6 +2,7 @@
 // seed a different one, and the log holds every channel at its rate.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <lcm/lcm-cpp.hpp>
@@ -68,6 +69,40 @@ TEST(SlamerSim, BadWorldFileIsOneLine) {
   test::ChildProcess no_world(test::binary_path("slamer-sim"), {"--out", "/tmp/x.lcm"});
   EXPECT_EQ(no_world.wait(10.0), std::optional<int>(2));
   EXPECT_EQ(no_world.stderr_text(), "slamer-sim: error: --world FILE is required\n");
+}
+
+}  // namespace
+}  // namespace slamer
+
+namespace slamer {
+namespace {
+
+// slamer-sim -> slamer-eval: ground truth as the estimate scores zero error,
+// dead reckoning does not.
+TEST(SlamerEval, GroundTruthScoresZeroAndOdometryDrifts) {
+  const std::string log = std::string(SLAMER_BINARY_DIR) + "/sim_eval.lcm";
+  ASSERT_EQ(run_sim("3", log), 0);
+  const std::string world = std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml";
+  const std::string config = std::string(SLAMER_SOURCE_DIR) + "/config/eval.yaml";
+  test::ChildProcess truth(test::binary_path("slamer-eval"),
+                           {"--world", world, "--config", config, "--estimate", "GROUND_TRUTH", "--json", log});
+  ASSERT_EQ(truth.wait(60.0), std::optional<int>(0)) << truth.stderr_text();
+  const std::string json = truth.stdout_text();
+  EXPECT_NE(json.find("\"position_mean_m\": 0, \"position_std_m\": 0, \"position_max_m\": 0"), std::string::npos)
+      << json;
+  const std::string plot = std::string(SLAMER_BINARY_DIR) + "/sim_eval.png";
+  test::ChildProcess odometry(test::binary_path("slamer-eval"),
+                              {"--world", world, "--estimate", "ODOMETRY", "--plot", plot, log});
+  ASSERT_EQ(odometry.wait(60.0), std::optional<int>(0)) << odometry.stderr_text();
+  const std::string table = odometry.stdout_text();
+  const std::size_t row = table.find("Pose error [cm / deg]  Ave");
+  ASSERT_NE(row, std::string::npos) << table;
+  const double mean_cm = std::stod(table.substr(table.find_first_of("0123456789", row + 28)));
+  EXPECT_GT(mean_cm, 0.5) << table;
+  EXPECT_LT(mean_cm, 100.0) << table;
+  EXPECT_GT(std::filesystem::file_size(plot), 1000u);
+  std::remove(log.c_str());
+  std::remove(plot.c_str());
 }
 
 }  // namespace

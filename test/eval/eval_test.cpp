@@ -1,0 +1,154 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "tools/eval/evaluation.hpp"
+#include "tools/eval/report.hpp"
+
+namespace slamer {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+TEST(PoseAt, InterpolatesInsideAndRefusesOutside) {
+  const std::vector<PoseSample> series{{100, {0.0, 0.0, 0.0}}, {200, {1.0, 0.0, 0.0}}, {300, {1.0, 0.0, kPi / 2}}};
+  EXPECT_FALSE(pose_at(series, 99).has_value());
+  EXPECT_FALSE(pose_at(series, 301).has_value());
+  EXPECT_NEAR(pose_at(series, 150)->x, 0.5, 1e-12);
+  EXPECT_NEAR(pose_at(series, 250)->theta, kPi / 4, 1e-12);
+  EXPECT_DOUBLE_EQ(pose_at(series, 300)->theta, kPi / 2);
+  EXPECT_FALSE(pose_at({}, 5).has_value());
+}
+
+TEST(PoseErrors, StatisticsAndLostFraction) {
+  std::vector<PoseSample> truth;
+  std::vector<PoseSample> estimate;
+  for (int i = 0; i < 10; ++i) {
+    truth.push_back({i * 1000, {static_cast<double>(i), 0.0, kPi - 0.01}});
+    // Eight estimates 0.1 m off, two 1.0 m off; headings 0.02 rad off across the +-pi seam.
+    const double offset = i < 8 ? 0.1 : 1.0;
+    estimate.push_back({i * 1000, {static_cast<double>(i), offset, -kPi + 0.01}});
+  }
+  estimate.push_back({50'000, {}});  // outside the ground truth: not scored
+  const std::vector<PoseError> errors = pose_errors(truth, estimate);
+  ASSERT_EQ(errors.size(), 10u);
+  const PoseErrorStats stats = summarize(errors, 0.5);
+  EXPECT_NEAR(stats.position_mean, 0.28, 1e-12);
+  EXPECT_NEAR(stats.position_std, std::sqrt((8 * 0.18 * 0.18 + 2 * 0.72 * 0.72) / 10), 1e-12);
+  EXPECT_NEAR(stats.position_max, 1.0, 1e-12);
+  EXPECT_NEAR(stats.heading_mean, 0.02, 1e-9);
+  EXPECT_NEAR(stats.lost_fraction, 0.2, 1e-12);
+}
+
+// A 20 m x 10 m map at 0.1 m: a door at x = 10 (drawn closed), a fence at
+// y = 2 and a no-entry line at y = 8.
+SemanticMap make_map() {
+  SemanticMap map;
+  map.geometry = {200, 100, 0.1, {}};
+  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
+  map.labels.assign(map.geometry.size(), -1);
+  map.classes = {{"door", {255, 0, 255}},
+                 {"glass_door", {0, 255, 255}},
+                 {"fence", {255, 128, 0}},
+                 {"no_entry_line", {255, 0, 0}},
+                 {"others", {0, 0, 0}}};
+  for (int y = 40; y < 60; ++y) {
+    map.labels[map.geometry.index(100, y)] = 0;
+    map.occupancy[map.geometry.index(100, y)] = Occupancy::kOccupied;
+  }
+  for (int x = 20; x < 80; ++x) {
+    map.labels[map.geometry.index(x, 20)] = 2;
+    map.labels[map.geometry.index(x, 80)] = 3;
+  }
+  return map;
+}
+
+TEST(ObjectLabeler, TrueClassesFromTheWorldAtTheTime) {
+  const SemanticMap map = make_map();
+  WorldOptions options;
+  DoorTruth door;
+  door.near = {10.05, 5.0};
+  door.changes = {{30.0, DoorState::kOpen}};
+  options.doors = {door};
+  const TrueWorld world(map, options, "test");
+  const EvalOptions eval;
+  const ObjectLabeler labeler(world, eval);
+  const auto name = [&](int index) {
+    return index < 0 ? std::string("none") : eval.classes[static_cast<std::size_t>(index)].name;
+  };
+  EXPECT_EQ(name(labeler.label({10.05, 4.2}, {10.05, 5.8}, 0.0)), "closed_door");
+  EXPECT_EQ(name(labeler.label({10.05, 4.2}, {10.05, 5.8}, 31.0)), "open_door");
+  EXPECT_EQ(name(labeler.label({2.5, 2.05}, {7.5, 2.05}, 0.0)), "fence");
+  EXPECT_EQ(name(labeler.label({2.5, 8.05}, {7.5, 8.05}, 0.0)), "no_entry_line");
+  EXPECT_EQ(name(labeler.label({14.0, 5.0}, {16.0, 5.0}, 0.0)), "free_space");
+}
+
+TEST(ScoreRun, ThreeMethodsAgainstTheTruth) {
+  const SemanticMap map = make_map();
+  WorldOptions truth_options;
+  truth_options.doors = {{{10.05, 5.0}, DoorState::kOpen, {}}};  // drawn closed, really open
+  const TrueWorld truth_world(map, truth_options, "test");
+  const TrueWorld map_world(map, WorldOptions{}, "test");
+  const EvalOptions eval;
+
+  RunInputs run;
+  // The robot stands at (5, 5) facing +x, exactly where the estimate says.
+  run.truth = {{0, {5.0, 5.0, 0.0}}, {1'000'000, {5.0, 5.0, 0.0}}};
+  run.estimate = run.truth;
+  const std::vector<std::string> names{"open_door", "closed_door",   "open_glass_door", "closed_glass_door",
+                                       "fence",     "no_entry_line", "free_space",      "others"};
+  const auto probs = [&](const std::string& winner) {
+    std::vector<float> p(names.size(), 0.02f);
+    p[static_cast<std::size_t>(std::find(names.begin(), names.end(), winner) - names.begin())] = 0.86f;
+    return p;
+  };
+  // Scan 1 (t = 0): the door (sensor frame x = 5.05) recognized open (right), the fence recognized as fence (right).
+  LineObjectSet scan1{0, 0, names, {}};
+  scan1.objects.push_back({LineKind::kSpatial, {5.05, -0.8}, {5.05, 0.8}, 0, probs("open_door"), -1});
+  scan1.objects.push_back({LineKind::kPhysical, {-2.5, -2.95}, {2.5, -2.95}, 30, probs("fence"), -1});
+  // Scan 2 (t = 1 s): the door recognized closed (wrong).
+  LineObjectSet scan2{1'000'000, 1, names, {}};
+  scan2.objects.push_back({LineKind::kPhysical, {5.05, -0.8}, {5.05, 0.8}, 10, probs("closed_door"), -1});
+  run.recognized = {scan1, scan2};
+  // SLAMER says open door and fence in scan 1, open door in scan 2.
+  LineObjectSet s1{0, 0, names, {}};
+  s1.objects = {{LineKind::kSpatial, {}, {}, 0, probs("open_door"), 0},
+                {LineKind::kPhysical, {}, {}, 0, probs("fence"), 4}};
+  LineObjectSet s2{1'000'000, 1, names, {}};
+  s2.objects = {{LineKind::kSpatial, {}, {}, 0, probs("open_door"), 0}};
+  run.semantic = {s1, s2};
+
+  const RunScores scores = score_run(run, truth_world, map_world, Pose2{}, eval);
+  EXPECT_EQ(scores.recognizer.scans, 2u);
+  EXPECT_EQ(scores.recognizer.objects, 3u);
+  EXPECT_DOUBLE_EQ(scores.recognizer.mean, 0.5);  // scan 1: 2/2, scan 2: 0/1
+  EXPECT_DOUBLE_EQ(scores.recognizer.min, 0.0);
+  EXPECT_DOUBLE_EQ(scores.recognizer.max, 1.0);
+  EXPECT_DOUBLE_EQ(scores.recognizer.std, 0.5);
+  // The map shows the door closed: map-based gets the fence only.
+  EXPECT_DOUBLE_EQ(scores.map_based.mean, (0.5 + 0.0) / 2);
+  EXPECT_DOUBLE_EQ(scores.slamer.mean, 1.0);
+  EXPECT_EQ(scores.pose.samples, 2u);
+  EXPECT_DOUBLE_EQ(scores.pose.position_max, 0.0);
+
+  const std::string table = render_table({{"run.lcm", scores}}, eval);
+  EXPECT_NE(table.find("50.00 %"), std::string::npos) << table;
+  EXPECT_NE(table.find("100.00 %"), std::string::npos) << table;
+  const std::string json = render_json({{"run.lcm", scores}}, eval);
+  EXPECT_NE(json.find("\"recognizer\": {\"scans\": 2, \"objects\": 3, \"mean\": 0.5"), std::string::npos) << json;
+}
+
+TEST(ScoreRun, MissingChannelsAreNotApplicable) {
+  const SemanticMap map = make_map();
+  const TrueWorld world(map, WorldOptions{}, "test");
+  const RunScores scores = score_run(RunInputs{}, world, world, Pose2{}, EvalOptions{});
+  EXPECT_EQ(scores.pose.samples, 0u);
+  const std::string table = render_table({{"empty.lcm", scores}}, EvalOptions{});
+  EXPECT_NE(table.find("n/a"), std::string::npos);
+  EXPECT_EQ(table.find("nan"), std::string::npos);
+  EXPECT_NE(render_json({{"empty.lcm", scores}}, EvalOptions{}).find("\"pose\": null"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace slamer
