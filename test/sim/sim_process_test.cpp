@@ -107,3 +107,26 @@ TEST(SlamerEval, GroundTruthScoresZeroAndOdometryDrifts) {
 
 }  // namespace
 }  // namespace slamer
+
+namespace slamer {
+namespace {
+
+TEST(SlamerRender, WritesFramesOfALog) {
+  const std::string log = std::string(SLAMER_BINARY_DIR) + "/sim_render.lcm";
+  ASSERT_EQ(run_sim("4", log), 0);
+  const std::string out = std::string(SLAMER_BINARY_DIR) + "/render_frames";
+  std::filesystem::remove_all(out);
+  test::ChildProcess render(test::binary_path("slamer-render"),
+                            {"--world", std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml", "--out", out,
+                             "--every", "200", "--max-frames", "3", log});
+  ASSERT_EQ(render.wait(60.0), std::optional<int>(0)) << render.stderr_text();
+  EXPECT_TRUE(std::filesystem::exists(out + "/frame_000000.png"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/frame_000002.png"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/frame_000003.png"));
+  EXPECT_GT(std::filesystem::file_size(out + "/frame_000000.png"), 2000u);
+  std::filesystem::remove_all(out);
+  std::remove(log.c_str());
+}
+
+}  // namespace
+}  // namespace slamer
