@@ -12,6 +12,7 @@
 #include "common/config/config_reader.hpp"
 #include "common/map/semantic_map.hpp"
 #include "common/robot/robot_options.hpp"
+#include "recognizer/recognizer_config.hpp"
 #include "tools/eval/eval_config.hpp"
 #include "tools/sim/floor_plan.hpp"
 #include "tools/sim/sim_config.hpp"
@@ -40,6 +41,7 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
       {"slamer-status.yaml", [](const std::string& path) { load_options<StatusProcessConfig>(path); }},
       {"sim.yaml", [](const std::string& path) { load_options<SimProcessConfig>(path); }},
       {"eval.yaml", [](const std::string& path) { load_options<EvalConfig>(path); }},
+      {"recognizer.yaml", [](const std::string& path) { load_options<RecognizerProcessConfig>(path); }},
       {"robots/icart_mini.yaml", [](const std::string& path) { load_options<RobotOptions>(path); }},
       {"worlds/small_room.yaml", load_world},
       {"worlds/paper_indoor.yaml", load_world},

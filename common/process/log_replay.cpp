@@ -1,0 +1,62 @@
+#include "common/process/log_replay.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <lcm/lcm-cpp.hpp>
+#include <stdexcept>
+
+namespace slamer {
+
+ReplayStats replay_log(const std::string& in_path, const std::string& out_path, const std::set<std::string>& channels,
+                       const std::function<void(const std::string&, const std::vector<uint8_t>&, int64_t,
+                                                std::vector<OutputEvent>*)>& handle,
+                       const std::function<void(double)>& progress) {
+  if (std::filesystem::weakly_canonical(in_path) == std::filesystem::weakly_canonical(out_path)) {
+    throw std::runtime_error("the output log must not be the input log " + in_path);
+  }
+  lcm::LogFile in(in_path, "r");
+  if (!in.good()) {
+    throw std::runtime_error("cannot read log " + in_path);
+  }
+  lcm::LogFile out(out_path, "w");
+  if (!out.good()) {
+    throw std::runtime_error("cannot write log " + out_path);
+  }
+  const auto size = static_cast<double>(std::max<std::uintmax_t>(std::filesystem::file_size(in_path), 1));
+  ReplayStats stats;
+  const auto write = [&](const std::string& channel, const void* data, int32_t length, int64_t timestamp) {
+    lcm::LogEvent event;
+    event.timestamp = timestamp;
+    event.channel = channel;
+    event.datalen = length;
+    event.data = const_cast<void*>(data);
+    if (out.writeEvent(&event) != 0) {
+      throw std::runtime_error("cannot write to " + out_path);
+    }
+    ++stats.events_out;
+  };
+  std::vector<OutputEvent> outputs;
+  for (const lcm::LogEvent* event = in.readNextEvent(); event != nullptr; event = in.readNextEvent()) {
+    ++stats.events_in;
+    write(event->channel, event->data, event->datalen, event->timestamp);
+    if (channels.count(event->channel) != 0) {
+      ++stats.events_handled;
+      outputs.clear();
+      const auto* bytes = static_cast<const uint8_t*>(event->data);
+      try {
+        handle(event->channel, std::vector<uint8_t>(bytes, bytes + event->datalen), event->timestamp, &outputs);
+      } catch (const std::exception&) {
+        ++stats.handler_errors;  // the event is skipped, the replay goes on
+      }
+      for (const OutputEvent& output : outputs) {
+        write(output.channel, output.bytes.data(), static_cast<int32_t>(output.bytes.size()), event->timestamp);
+      }
+    }
+    if (progress && stats.events_in % 5000 == 0) {
+      progress(static_cast<double>(std::ftell(in.getFilePtr())) / size);
+    }
+  }
+  return stats;
+}
+
+}  // namespace slamer

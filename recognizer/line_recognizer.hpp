@@ -1,0 +1,28 @@
+// The line-object recognizer (paper Sec. VI-B, made correct): physical lines
+// from the probabilistic Hough transform of a scan image, their orientation
+// histogram, spatial lines the scan passes through, and class probabilities
+// for each from configurable rules. Pure: a scan in, objects out.
+#pragma once
+
+#include "common/semantic/objects.hpp"
+#include "common/sensors/laser_scan.hpp"
+#include "recognizer/recognizer_options.hpp"
+
+namespace slamer {
+
+// Probabilities over options.classes from the first rule matching the object
+// (kind, coverage, length); they sum to 1. No matching rule: uniform.
+std::vector<float> classify(LineKind kind, double coverage, double length, const RecognizerOptions& options);
+
+class LineRecognizer {
+ public:
+  explicit LineRecognizer(RecognizerOptions options) : options_(std::move(options)) {}
+
+  LineObjectSet recognize(const LaserScan& scan) const;
+  const RecognizerOptions& options() const { return options_; }
+
+ private:
+  RecognizerOptions options_;
+};
+
+}  // namespace slamer

@@ -1,0 +1,14 @@
+#include "recognizer/recognizer_config.hpp"
+
+namespace slamer {
+
+void read_options(const ConfigReader& reader, RecognizerProcessConfig* config) {
+  read_options(reader.section("process"), &config->process);
+  read_options(reader.section("recognizer"), &config->recognizer);
+  const ConfigReader channels = reader.section("channels");
+  channels.read("lidar", &config->lidar_channel);
+  channels.read("line_objects", &config->line_objects_channel);
+  reader.read("max_beams", &config->max_beams, in_range(1, 10'000'000));
+}
+
+}  // namespace slamer

@@ -1,0 +1,18 @@
+// The config file of slamer-recognizer (config/recognizer.yaml).
+#pragma once
+
+#include "common/process/process_options.hpp"
+#include "recognizer/recognizer_options.hpp"
+
+namespace slamer {
+
+struct RecognizerProcessConfig {
+  ProcessOptions process;
+  RecognizerOptions recognizer;
+  std::string lidar_channel = "LIDAR";
+  std::string line_objects_channel = "LINE_OBJECTS";
+  int max_beams = 100000;  // larger scans are rejected as malformed
+};
+void read_options(const ConfigReader& reader, RecognizerProcessConfig* config);
+
+}  // namespace slamer
