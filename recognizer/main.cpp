@@ -118,7 +118,7 @@ int run_replay(const RecognizerProcessConfig& config, const std::string& in, con
   const ReplayStats stats = replay_log(
       in, out, {config.lidar_channel},
       [&](const std::string&, const std::vector<uint8_t>& bytes, int64_t, std::vector<OutputEvent>* outputs) {
-        laser_scan_t scan;
+        laser_scan_t scan{};
         int64_t missed = 0;
         if (decode_message(bytes.data(), bytes.size(), &scan) != DecodeStatus::kOk ||
             !check_scan(scan, config.max_beams).empty()) {

@@ -48,9 +48,10 @@ std::vector<SpatialLine> spatial_candidates(const PreparedScan& scan, double ang
     known[k + 1] = known[k] + (scan.state[k] != BeamState::kUnknown ? 1 : 0);
   }
   // Beyond this many beams the two ends are half a turn apart: the line would pass behind the sensor.
-  const int max_span = std::abs(angle_increment) > 0.0
-                           ? static_cast<int>(std::floor(std::numbers::pi / std::abs(angle_increment))) - 1
-                           : 0;
+  const double half_turn = std::abs(angle_increment) > 0.0 ? std::floor(std::numbers::pi / std::abs(angle_increment))
+                                                           : 0.0;  // NaN compares false: no pairs
+  const int max_span =
+      half_turn >= 1.0 ? static_cast<int>(std::min(half_turn - 1.0, static_cast<double>(scan.state.size()))) : 0;
   const double min2 = options.spatial_min_length * options.spatial_min_length;
   const double max2 = options.spatial_max_length * options.spatial_max_length;
   std::vector<SpatialLine> lines;

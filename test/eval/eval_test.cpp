@@ -79,6 +79,8 @@ TEST(ObjectLabeler, TrueClassesFromTheWorldAtTheTime) {
   };
   EXPECT_EQ(name(labeler.label({10.05, 4.2}, {10.05, 5.8}, 0.0)), "closed_door");
   EXPECT_EQ(name(labeler.label({10.05, 4.2}, {10.05, 5.8}, 31.0)), "open_door");
+  // A doorway line drawn 0.1 m off the door cells is still that (open) door.
+  EXPECT_EQ(name(labeler.label({10.15, 4.2}, {10.15, 5.8}, 31.0)), "open_door");
   EXPECT_EQ(name(labeler.label({2.5, 2.05}, {7.5, 2.05}, 0.0)), "fence");
   EXPECT_EQ(name(labeler.label({2.5, 8.05}, {7.5, 8.05}, 0.0)), "no_entry_line");
   EXPECT_EQ(name(labeler.label({14.0, 5.0}, {16.0, 5.0}, 0.0)), "free_space");

@@ -82,6 +82,11 @@ TEST(Recognizer, DegenerateScansGiveNoObjectsAndNoCrash) {
   EXPECT_TRUE(recognizer.recognize(broken).objects.empty());
   const LineObjectSet result = recognizer.recognize(nan);
   EXPECT_EQ(result.class_names.size(), 8u);
+  // A tiny angle increment once overflowed the spatial search's span (found by the fuzzer).
+  LaserScan tiny = empty_scan(1081);
+  tiny.angle_increment = 1e-23;
+  std::fill(tiny.ranges.begin(), tiny.ranges.end(), 2.0f);
+  EXPECT_NO_FATAL_FAILURE(recognizer.recognize(tiny));
 }
 
 TEST(Recognizer, StraightWallIsOneFullyCoveredPhysicalLine) {

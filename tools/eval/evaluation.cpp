@@ -167,10 +167,11 @@ int ObjectLabeler::label(const Eigen::Vector2d& start, const Eigen::Vector2d& en
   for (int i = 0; i < samples; ++i) {
     const double t = samples == 1 ? 0.5 : static_cast<double>(i) / (samples - 1);
     const Eigen::Vector2d p = start + t * (end - start);
-    const int world_class = world_.class_near(p, options_.object_match_radius);
+    int door = -1;
+    const int world_class = world_.class_near(p, options_.object_match_radius, &door);
     int recognition = free_space_;
     if (world_class >= 0) {
-      const int door = world_.door_at(p);
+      // The state of the door the matched cell belongs to (p itself may lie just off it).
       const bool open = door >= 0 && world_.door_state(door, time) == DoorState::kOpen;
       recognition =
           (open ? world_to_recognition_open_ : world_to_recognition_closed_)[static_cast<std::size_t>(world_class)];

@@ -64,7 +64,7 @@ RunInputs read_run(const std::string& path, const EvalChannels& channels, const 
     }
     const std::string& channel = event->channel;
     if (channel == channels.ground_truth || (channel == estimate && estimate != channels.odometry)) {
-      pose_estimate_t pose;
+      pose_estimate_t pose{};
       if (decode(event, &pose)) {
         const PoseSample sample{pose.utime, {pose.x, pose.y, pose.theta}};
         if (channel == channels.ground_truth) {
@@ -75,17 +75,17 @@ RunInputs read_run(const std::string& path, const EvalChannels& channels, const 
         }
       }
     } else if (channel == channels.odometry && estimate == channels.odometry) {
-      odometry_t odom;
+      odometry_t odom{};
       if (decode(event, &odom)) {
         odometry.push_back({odom.utime, {odom.x, odom.y, odom.theta}});
       }
     } else if (channel == channels.line_objects) {
-      line_objects_t objects;
+      line_objects_t objects{};
       if (decode(event, &objects)) {
         run.recognized.push_back(from_message(objects));
       }
     } else if (channel == channels.semantic_objects) {
-      semantic_objects_t objects;
+      semantic_objects_t objects{};
       if (decode(event, &objects)) {
         run.semantic.push_back(from_message(objects));
       }

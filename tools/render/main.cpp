@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
         for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr && !done(); e = log.readNextEvent()) {
           const auto size = static_cast<std::size_t>(e->datalen);
           if (e->channel == "LIDAR") {
-            slamer::laser_scan_t m;
+            slamer::laser_scan_t m{};
             if (slamer::decode_message(e->data, size, &m) != slamer::DecodeStatus::kOk) {
               continue;
             }
@@ -171,12 +171,12 @@ int main(int argc, char** argv) {
               pending.scans.push_back(slamer::from_message(m));
             }
           } else if (e->channel == "GROUND_TRUTH" || e->channel == "POSE") {
-            slamer::pose_estimate_t m;
+            slamer::pose_estimate_t m{};
             if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
               (e->channel == "POSE" ? pending.estimate : pending.truth)[m.utime] = slamer::to_pose(m);
             }
           } else if (e->channel == "PARTICLES") {
-            slamer::particles_t m;
+            slamer::particles_t m{};
             if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
               auto& list = pending.particles[m.utime];
               for (int32_t i = 0; i < m.n; ++i) {
@@ -185,12 +185,12 @@ int main(int argc, char** argv) {
               }
             }
           } else if (e->channel == "SEMANTIC_OBJECTS") {
-            slamer::semantic_objects_t m;
+            slamer::semantic_objects_t m{};
             if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
               pending.semantic[m.utime] = slamer::to_set(m);
             }
           } else if (e->channel == "LINE_OBJECTS") {
-            slamer::line_objects_t m;
+            slamer::line_objects_t m{};
             if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
               pending.recognized[m.utime] = slamer::to_set(m);
             }

@@ -307,11 +307,12 @@ double TrueWorld::cast(const Eigen::Vector2d& origin, double angle, double max_r
   return kInf;
 }
 
-int TrueWorld::class_near(const Eigen::Vector2d& world, double radius) const {
+int TrueWorld::class_near(const Eigen::Vector2d& world, double radius, int* door) const {
   const GridGeometry& g = map_.geometry;
   const Eigen::Vector2d grid = g.to_grid(world);
   const int reach = static_cast<int>(std::ceil(radius / g.resolution));
   int best_label = -1;
+  int best_door = -1;
   double best = radius;
   for (int y = static_cast<int>(std::floor(grid.y())) - reach; y <= static_cast<int>(std::floor(grid.y())) + reach;
        ++y) {
@@ -322,9 +323,13 @@ int TrueWorld::class_near(const Eigen::Vector2d& world, double radius) const {
         if (d <= best) {
           best = d;
           best_label = truth_labels_[g.index(x, y)];
+          best_door = door_of_cell_[g.index(x, y)];
         }
       }
     }
+  }
+  if (door != nullptr) {
+    *door = best_door;
   }
   return best_label;
 }

@@ -80,9 +80,9 @@ class TrueWorld {
   double cast(const Eigen::Vector2d& origin, double angle, double max_range, double time, std::mt19937& rng) const;
 
   // The true class of the world at a point (for evaluation): the class of
-  // the nearest labelled cell within `radius`, with a door's open/closed state
-  // applied by the caller; -1 if none.
-  int class_near(const Eigen::Vector2d& world, double radius) const;
+  // the nearest labelled cell within `radius`, -1 if none; `door` (if given)
+  // receives that cell's door instance or -1.
+  int class_near(const Eigen::Vector2d& world, double radius, int* door = nullptr) const;
 
  private:
   SemanticMap map_;
