@@ -15,29 +15,6 @@
 namespace slamer {
 namespace {
 
-line_objects_t to_message(const LineObjectSet& set, const std::string& frame) {
-  line_objects_t message;
-  message.utime = set.utime;
-  message.seq = set.seq;
-  message.frame = frame;
-  message.class_names = set.class_names;
-  message.nclasses = static_cast<int32_t>(set.class_names.size());
-  for (const LineObject& o : set.objects) {
-    line_object_t object;
-    object.kind = static_cast<int8_t>(o.kind);
-    object.x1 = o.start.x();
-    object.y1 = o.start.y();
-    object.x2 = o.end.x();
-    object.y2 = o.end.y();
-    object.npoints = o.npoints;
-    object.probs = o.probs;
-    object.nclasses = static_cast<int32_t>(o.probs.size());
-    message.objects.push_back(object);
-  }
-  message.nobjects = static_cast<int32_t>(message.objects.size());
-  return message;
-}
-
 // Why a decoded scan cannot be used, or empty if it can.
 std::string check_scan(const laser_scan_t& scan, int max_beams) {
   if (scan.nranges > max_beams) {
@@ -95,7 +72,8 @@ int run_live(const RecognizerProcessConfig& config, const std::string& lcm_url) 
         if (missed > 0) {
           process.count_drop(config.lidar_channel, missed);
         }
-        process.publish(config.line_objects_channel, to_message(recognizer.recognize(from_message(scan)), scan.frame));
+        process.publish(config.line_objects_channel,
+                        to_line_objects_message(recognizer.recognize(from_message(scan)), scan.frame));
         if (process.health().state() != process_status_t::OK) {
           process.set_state(process_status_t::OK, "");
         }
@@ -130,7 +108,7 @@ int run_replay(const RecognizerProcessConfig& config, const std::string& in, con
           return;
         }
         outputs->push_back(encode_event(config.line_objects_channel,
-                                        to_message(recognizer.recognize(from_message(scan)), scan.frame)));
+                                        to_line_objects_message(recognizer.recognize(from_message(scan)), scan.frame)));
       },
       [&](double fraction) {
         if (terminal) {

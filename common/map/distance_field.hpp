@@ -28,6 +28,7 @@ class DistanceField {
   bool has_targets() const { return has_targets_; }
   // Distance [m] at a cell; +inf everywhere when there is no target.
   float at(int x, int y) const { return distance_[geometry_.index(x, y)]; }
+  float at_index(std::size_t index) const { return distance_[index]; }
   // Distance [m] of the cell containing a world point; nullopt off the map.
   std::optional<float> at_world(const Eigen::Vector2d& world) const;
 

@@ -76,4 +76,64 @@ pose_estimate_t make_exact_pose(int64_t utime, const Pose2& pose) {
   return message;
 }
 
+LineObjectSet from_message(const line_objects_t& message) {
+  LineObjectSet set{message.utime, message.seq, message.class_names, {}};
+  for (const line_object_t& o : message.objects) {
+    set.objects.push_back({static_cast<LineKind>(o.kind), {o.x1, o.y1}, {o.x2, o.y2}, o.npoints, o.probs, -1});
+  }
+  return set;
+}
+
+LineObjectSet from_message(const semantic_objects_t& message) {
+  LineObjectSet set{message.utime, 0, message.class_names, {}};
+  for (const semantic_object_t& o : message.objects) {
+    set.objects.push_back({static_cast<LineKind>(o.kind), {o.x1, o.y1}, {o.x2, o.y2}, 0, o.probs, o.label});
+  }
+  return set;
+}
+
+line_objects_t to_line_objects_message(const LineObjectSet& set, const std::string& frame) {
+  line_objects_t message;
+  message.utime = set.utime;
+  message.seq = set.seq;
+  message.frame = frame;
+  message.class_names = set.class_names;
+  message.nclasses = static_cast<int32_t>(set.class_names.size());
+  for (const LineObject& o : set.objects) {
+    line_object_t object;
+    object.kind = static_cast<int8_t>(o.kind);
+    object.x1 = o.start.x();
+    object.y1 = o.start.y();
+    object.x2 = o.end.x();
+    object.y2 = o.end.y();
+    object.npoints = o.npoints;
+    object.probs = o.probs;
+    object.nclasses = static_cast<int32_t>(o.probs.size());
+    message.objects.push_back(object);
+  }
+  message.nobjects = static_cast<int32_t>(message.objects.size());
+  return message;
+}
+
+semantic_objects_t to_semantic_objects_message(const LineObjectSet& set) {
+  semantic_objects_t message;
+  message.utime = set.utime;
+  message.class_names = set.class_names;
+  message.nclasses = static_cast<int32_t>(set.class_names.size());
+  for (const LineObject& o : set.objects) {
+    semantic_object_t object;
+    object.kind = static_cast<int8_t>(o.kind);
+    object.x1 = o.start.x();
+    object.y1 = o.start.y();
+    object.x2 = o.end.x();
+    object.y2 = o.end.y();
+    object.probs = o.probs;
+    object.nclasses = static_cast<int32_t>(o.probs.size());
+    object.label = o.label;
+    message.objects.push_back(object);
+  }
+  message.nobjects = static_cast<int32_t>(message.objects.size());
+  return message;
+}
+
 }  // namespace slamer

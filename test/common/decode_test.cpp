@@ -11,6 +11,7 @@
 
 #include "slamer/laser_scan_t.hpp"
 #include "slamer/line_objects_t.hpp"
+#include "slamer/odometry_t.hpp"
 #include "slamer/particles_t.hpp"
 #include "slamer/process_status_t.hpp"
 
@@ -68,6 +69,31 @@ TEST(DecodeMessage, RoundTripKeepsRep117Values) {
   EXPECT_TRUE(std::isinf(decoded.ranges[1]) && decoded.ranges[1] > 0);
   EXPECT_TRUE(std::isinf(decoded.ranges[2]) && decoded.ranges[2] < 0);
   EXPECT_TRUE(std::isnan(decoded.ranges[3]));
+}
+
+TEST(DecodeMessage, DoublesDecodeIntoValueInitializedMessages) {
+  // lcm_coretypes.h writes doubles through an int64_t*: without
+  // -fno-strict-aliasing, GCC -O2 returned the zeros of the {} below.
+  odometry_t sent{};
+  sent.utime = 17;
+  sent.x = 2.5;
+  sent.y = -1.25;
+  sent.theta = 0.75;
+  sent.v = 0.5;
+  sent.omega = -0.125;
+  const std::vector<uint8_t> bytes = encode(sent);
+  odometry_t got{};
+  ASSERT_EQ(decode_message(bytes.data(), bytes.size(), &got), DecodeStatus::kOk);
+  EXPECT_EQ(got.x, 2.5);
+  EXPECT_EQ(got.y, -1.25);
+  EXPECT_EQ(got.theta, 0.75);
+  EXPECT_EQ(got.v, 0.5);
+  EXPECT_EQ(got.omega, -0.125);
+  laser_scan_t scan{};
+  const std::vector<uint8_t> scan_bytes = encode(make_scan());
+  ASSERT_EQ(decode_message(scan_bytes.data(), scan_bytes.size(), &scan), DecodeStatus::kOk);
+  EXPECT_EQ(scan.range_max, 30.0f);
+  EXPECT_EQ(scan.angle_increment, 0.004363323129985824);
 }
 
 TEST(DecodeMessage, ClassifiesBadInput) {

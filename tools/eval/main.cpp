@@ -7,6 +7,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 
+#include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
 #include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
@@ -19,23 +20,6 @@
 
 namespace slamer {
 namespace {
-
-LineObjectSet from_message(const line_objects_t& m) {
-  LineObjectSet set{m.utime, m.seq, m.class_names, {}};
-  for (const line_object_t& o : m.objects) {
-    set.objects.push_back(
-        {static_cast<LineKind>(o.kind), {o.x1, o.y1}, {o.x2, o.y2}, o.npoints, o.probs, most_likely(o.probs)});
-  }
-  return set;
-}
-
-LineObjectSet from_message(const semantic_objects_t& m) {
-  LineObjectSet set{m.utime, 0, m.class_names, {}};
-  for (const semantic_object_t& o : m.objects) {
-    set.objects.push_back({static_cast<LineKind>(o.kind), {o.x1, o.y1}, {o.x2, o.y2}, 0, o.probs, o.label});
-  }
-  return set;
-}
 
 // Reads what scoring needs from a log. `estimate` names the channel of the
 // estimate; ODOMETRY is placed in the map by the first ground-truth pose.

@@ -26,22 +26,6 @@
 namespace slamer {
 namespace {
 
-LineObjectSet to_set(const line_objects_t& m) {
-  LineObjectSet set{m.utime, m.seq, m.class_names, {}};
-  for (const line_object_t& o : m.objects) {
-    set.objects.push_back({static_cast<LineKind>(o.kind), {o.x1, o.y1}, {o.x2, o.y2}, o.npoints, o.probs, -1});
-  }
-  return set;
-}
-
-LineObjectSet to_set(const semantic_objects_t& m) {
-  LineObjectSet set{m.utime, 0, m.class_names, {}};
-  for (const semantic_object_t& o : m.objects) {
-    set.objects.push_back({static_cast<LineKind>(o.kind), {o.x1, o.y1}, {o.x2, o.y2}, 0, o.probs, o.label});
-  }
-  return set;
-}
-
 Pose2 to_pose(const pose_estimate_t& m) {
   return {m.x, m.y, m.theta};
 }
@@ -187,12 +171,12 @@ int main(int argc, char** argv) {
           } else if (e->channel == "SEMANTIC_OBJECTS") {
             slamer::semantic_objects_t m{};
             if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
-              pending.semantic[m.utime] = slamer::to_set(m);
+              pending.semantic[m.utime] = slamer::from_message(m);
             }
           } else if (e->channel == "LINE_OBJECTS") {
             slamer::line_objects_t m{};
             if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
-              pending.recognized[m.utime] = slamer::to_set(m);
+              pending.recognized[m.utime] = slamer::from_message(m);
             }
           }
         }

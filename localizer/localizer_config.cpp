@@ -1,0 +1,32 @@
+#include "localizer/localizer_config.hpp"
+
+#include <filesystem>
+
+namespace slamer {
+
+void read_options(const ConfigReader& reader, LocalizerProcessConfig* config) {
+  read_options(reader.section("process"), &config->process);
+  read_options(reader.section("localizer"), &config->localizer);
+  const ConfigReader channels = reader.section("channels");
+  channels.read("lidar", &config->channels.lidar);
+  channels.read("odometry", &config->channels.odometry);
+  channels.read("line_objects", &config->channels.line_objects);
+  channels.read("initial_pose", &config->channels.initial_pose);
+  channels.read("pose", &config->channels.pose);
+  channels.read("semantic_objects", &config->channels.semantic_objects);
+  channels.read("particles", &config->channels.particles);
+  const auto resolve = [&](const std::string& path) {
+    return path.empty() || path.front() == '/' || reader.directory().empty()
+               ? path
+               : (std::filesystem::path(reader.directory()) / path).lexically_normal().string();
+  };
+  reader.read("map", &config->map);
+  reader.read("robot", &config->robot);
+  config->map = resolve(config->map);
+  config->robot = resolve(config->robot);
+  reader.read("particles_out", &config->particles_out, in_range(0, 100000));
+  reader.read("particles_period", &config->particles_period, positive());
+  reader.read("objects_wait", &config->objects_wait, in_range(0.0, 5.0));
+}
+
+}  // namespace slamer

@@ -1,0 +1,31 @@
+// The config file of slamer-localizer (config/localizer.yaml).
+#pragma once
+
+#include "common/process/process_options.hpp"
+#include "localizer/localizer_options.hpp"
+
+namespace slamer {
+
+struct LocalizerChannels {
+  std::string lidar = "LIDAR";
+  std::string odometry = "ODOMETRY";
+  std::string line_objects = "LINE_OBJECTS";
+  std::string initial_pose = "INITIAL_POSE";
+  std::string pose = "POSE";
+  std::string semantic_objects = "SEMANTIC_OBJECTS";
+  std::string particles = "PARTICLES";
+};
+
+struct LocalizerProcessConfig {
+  ProcessOptions process;
+  LocalizerOptions localizer;
+  LocalizerChannels channels;
+  std::string map;                // semantic map YAML, resolved against the config file
+  std::string robot;              // robot YAML (for the LiDAR mount), resolved against the config file
+  int particles_out = 200;        // particles sent on PARTICLES (evenly picked)
+  double particles_period = 0.2;  // [s] at most one PARTICLES per period
+  double objects_wait = 0.1;      // [s] live: how long a scan waits for its LINE_OBJECTS
+};
+void read_options(const ConfigReader& reader, LocalizerProcessConfig* config);
+
+}  // namespace slamer

@@ -1,0 +1,70 @@
+#include "localizer/localizer_options.hpp"
+
+#include <stdexcept>
+
+#include "common/robot/robot_options.hpp"
+
+namespace slamer {
+
+LocalizerMode parse_mode(const std::string& text) {
+  if (text == "lfm") {
+    return LocalizerMode::kLfm;
+  }
+  if (text == "slfm") {
+    return LocalizerMode::kSlfm;
+  }
+  if (text == "slamer") {
+    return LocalizerMode::kSlamer;
+  }
+  throw std::invalid_argument("mode must be lfm, slfm or slamer, got '" + text + "'");
+}
+
+void read_options(const ConfigReader& reader, LocalizerOptions* o) {
+  std::string mode = o->mode == LocalizerMode::kLfm ? "lfm" : o->mode == LocalizerMode::kSlfm ? "slfm" : "slamer";
+  reader.read_choice("mode", &mode, {"lfm", "slfm", "slamer"});
+  o->mode = parse_mode(mode);
+  reader.read("particles", &o->particles, in_range(1, 1'000'000));
+  int64_t seed = static_cast<int64_t>(o->seed);
+  reader.read("seed", &seed, non_negative());
+  o->seed = static_cast<uint64_t>(seed);
+  reader.read("alpha_rot_from_rot", &o->alpha_rot_from_rot, non_negative());
+  reader.read("alpha_rot_from_trans", &o->alpha_rot_from_trans, non_negative());
+  reader.read("alpha_trans_from_trans", &o->alpha_trans_from_trans, non_negative());
+  reader.read("alpha_trans_from_rot", &o->alpha_trans_from_rot, non_negative());
+  const ConfigReader lfm = reader.section("lfm");
+  lfm.read("sigma_hit", &o->lfm.sigma_hit, positive());
+  lfm.read("z_hit", &o->lfm.z_hit, probability());
+  lfm.read("z_max", &o->lfm.z_max, probability());
+  lfm.read("z_rand", &o->lfm.z_rand, probability());
+  lfm.read("range_max", &o->lfm.range_max, positive());
+  if (std::abs(o->lfm.z_hit + o->lfm.z_max + o->lfm.z_rand - 1.0) > 1e-6) {
+    lfm.fail("z_rand", "z_hit + z_max + z_rand must be 1");
+  }
+  reader.read("beam_step", &o->beam_step, in_range(1, 10000));
+  reader.read("beam_weight", &o->beam_weight, in_range(1e-6, 1.0));
+  reader.read("slfm_lambda", &o->slfm_lambda, positive());
+  reader.read("slfm_support", &o->slfm_support, positive());
+  reader.read("dirichlet_a1", &o->dirichlet_a1, positive());
+  reader.read("dirichlet_a2", &o->dirichlet_a2, positive());
+  reader.read("prior_sigma", &o->prior_sigma, positive());
+  reader.read("object_weight", &o->object_weight, in_range(0.0, 10.0));
+  reader.read("object_samples", &o->object_samples, in_range(1, 50));
+  reader.read("min_probability", &o->min_probability, in_range(1e-12, 0.1));
+  if (reader.has("class_map")) {
+    const ConfigReader classes = reader.section("class_map");
+    o->class_map.clear();
+    for (const std::string& name : classes.keys()) {
+      std::string map_class;
+      classes.read(name, &map_class);
+      o->class_map[name] = map_class;
+    }
+  }
+  reader.read("resample_threshold", &o->resample_threshold, probability());
+  o->initial_pose = read_pose(reader, "initial_pose", o->initial_pose);
+  reader.read("initial_sigma", &o->initial_sigma, non_negative(), 3);
+  reader.read("uncertain_position_sigma", &o->uncertain_position_sigma, positive());
+  reader.read("lost_mean_log_likelihood", &o->lost_mean_log_likelihood);
+  reader.read("lost_after", &o->lost_after, at_least(1));
+}
+
+}  // namespace slamer

@@ -1,0 +1,262 @@
+// slamer-localizer: LIDAR + ODOMETRY + LINE_OBJECTS in; POSE, SEMANTIC_OBJECTS
+// and PARTICLES out. Live on LCM, or offline from a log (--replay IN --out OUT).
+#include <unistd.h>
+
+#include <cstdio>
+#include <limits>
+
+#include "common/map/semantic_map.hpp"
+#include "common/process/convert.hpp"
+#include "common/process/lcm_process.hpp"
+#include "common/process/log.hpp"
+#include "common/process/log_replay.hpp"
+#include "common/robot/robot_options.hpp"
+#include "localizer/localizer_config.hpp"
+#include "localizer/localizer_node.hpp"
+#include "slamer/initial_pose_t.hpp"
+#include "slamer/odometry_t.hpp"
+#include "slamer/particles_t.hpp"
+
+namespace slamer {
+namespace {
+
+int8_t to_status(LocalizerStatus status) {
+  switch (status) {
+    case LocalizerStatus::kInitializing:
+      return pose_estimate_t::INITIALIZING;
+    case LocalizerStatus::kOk:
+      return pose_estimate_t::OK;
+    case LocalizerStatus::kUncertain:
+      return pose_estimate_t::UNCERTAIN;
+    case LocalizerStatus::kLost:
+      return pose_estimate_t::LOST;
+  }
+  return pose_estimate_t::LOST;
+}
+
+pose_estimate_t to_pose_message(const UpdateResult& result, int64_t utime, int particles) {
+  pose_estimate_t message;
+  message.utime = utime;
+  message.x = result.estimate.pose.x;
+  message.y = result.estimate.pose.y;
+  message.theta = result.estimate.pose.theta;
+  std::copy(std::begin(result.estimate.covariance), std::end(result.estimate.covariance), std::begin(message.cov));
+  message.nparticles = particles;
+  message.ess = result.estimate.ess;
+  message.status = to_status(result.estimate.status);
+  return message;
+}
+
+particles_t to_particles_message(const std::vector<Particle>& particles, int64_t utime, int count) {
+  particles_t message;
+  message.utime = utime;
+  const std::size_t n = std::min(particles.size(), static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < n; ++i) {
+    const Particle& p = particles[i * particles.size() / n];  // evenly picked
+    message.x.push_back(p.pose.x);
+    message.y.push_back(p.pose.y);
+    message.theta.push_back(p.pose.theta);
+    message.weight.push_back(std::exp(p.log_weight));
+  }
+  message.n = static_cast<int32_t>(n);
+  return message;
+}
+
+// The outputs of one processed scan, as encoded events.
+std::vector<OutputEvent> outputs_of(const NodeOutput& output, int64_t scan_utime, const LocalizerProcessConfig& config,
+                                    int64_t* last_particles_utime) {
+  std::vector<OutputEvent> events;
+  events.push_back(
+      encode_event(config.channels.pose, to_pose_message(output.result, scan_utime, config.localizer.particles)));
+  LineObjectSet semantic = output.result.semantic;
+  semantic.utime = scan_utime;
+  events.push_back(encode_event(config.channels.semantic_objects, to_semantic_objects_message(semantic)));
+  if (config.particles_out > 0 &&
+      scan_utime - *last_particles_utime >= static_cast<int64_t>(config.particles_period * 1e6)) {
+    events.push_back(encode_event(config.channels.particles,
+                                  to_particles_message(output.particles, scan_utime, config.particles_out)));
+    *last_particles_utime = scan_utime;
+  }
+  return events;
+}
+
+struct Setup {
+  SemanticMap map;
+  RobotOptions robot;
+};
+
+Setup load_setup(const LocalizerProcessConfig& config) {
+  if (config.map.empty()) {
+    throw ConfigError("no map: set 'map' in the config or pass --map");
+  }
+  Setup setup{load_semantic_map(config.map), {}};
+  if (!config.robot.empty()) {
+    setup.robot = load_options<RobotOptions>(config.robot);
+  }
+  for (const std::string& warning : setup.map.warnings) {
+    log_line("slamer-localizer", LogLevel::kWarning, warning);
+  }
+  return setup;
+}
+
+int run_replay(const LocalizerProcessConfig& config, const std::string& in, const std::string& out) {
+  const Setup setup = load_setup(config);
+  LocalizerNode node(setup.map, config.localizer, setup.robot.lidar.mount);
+  int64_t last_particles = std::numeric_limits<int64_t>::min() / 2;
+  int64_t scans = 0;
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  const LocalizerChannels& ch = config.channels;
+  const auto flush = [&](std::vector<OutputEvent>* outputs, int64_t now) {
+    while (std::optional<NodeOutput> result = node.poll(now, 0)) {
+      const auto events = outputs_of(*result, result->result.semantic.utime, config, &last_particles);
+      outputs->insert(outputs->end(), events.begin(), events.end());
+      ++scans;
+    }
+  };
+  const ReplayStats stats = replay_log(
+      in, out, {ch.lidar, ch.odometry, ch.line_objects, ch.initial_pose},
+      [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t, std::vector<OutputEvent>* outputs) {
+        if (channel == ch.odometry) {
+          odometry_t m{};
+          if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
+            node.on_odometry(m.utime, {m.x, m.y, m.theta});
+          }
+        } else if (channel == ch.lidar) {
+          laser_scan_t m{};
+          if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
+            // The previous scan's objects will not come any more: process it as it is.
+            flush(outputs, std::numeric_limits<int64_t>::max());
+            node.on_scan(from_message(m));
+            if (!node.needs_objects()) {
+              flush(outputs, std::numeric_limits<int64_t>::max());
+            }
+          }
+        } else if (channel == ch.line_objects) {
+          line_objects_t m{};
+          if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
+            node.on_objects(from_message(m));
+            flush(outputs, std::numeric_limits<int64_t>::min() / 2);  // only if the objects matched
+          }
+        } else if (channel == ch.initial_pose) {
+          initial_pose_t m{};
+          if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
+            node.on_initial_pose({m.x, m.y, m.theta},
+                                 {std::sqrt(std::max(m.cov[0], 1e-6)), std::sqrt(std::max(m.cov[4], 1e-6)),
+                                  std::sqrt(std::max(m.cov[8], 1e-6))});
+          }
+        }
+      },
+      [&](double fraction) {
+        if (terminal) {
+          std::fprintf(stderr, "\rslamer-localizer: %3.0f%%", 100.0 * fraction);
+        }
+      });
+  if (terminal) {
+    std::fprintf(stderr, "\n");
+  }
+  const NodeCounters& c = node.counters();
+  log_line("slamer-localizer", LogLevel::kInfo,
+           "replayed " + std::to_string(scans) + " scans of " + in + " into " + out + " (" +
+               std::to_string(c.scans_without_objects) + " without objects, " + std::to_string(c.stale_scans) +
+               " stale, " + std::to_string(c.resets) + " resets, " + std::to_string(stats.handler_errors) + " errors)");
+  return 0;
+}
+
+int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
+  const Setup setup = load_setup(config);
+  LcmProcess process("slamer-localizer", lcm_url, config.process);
+  LocalizerNode node(setup.map, config.localizer, setup.robot.lidar.mount);
+  int64_t last_particles = std::numeric_limits<int64_t>::min() / 2;
+  const LocalizerChannels& ch = config.channels;
+  const auto wait_us = static_cast<int64_t>(config.objects_wait * 1e6);
+  NodeCounters reported;
+  const auto publish_ready = [&](int64_t now) {
+    while (std::optional<NodeOutput> result = node.poll(now, wait_us)) {
+      for (const OutputEvent& event : outputs_of(*result, result->result.semantic.utime, config, &last_particles)) {
+        process.publish_raw(event.channel, event.bytes);
+      }
+      const LocalizerStatus status = result->result.estimate.status;
+      process.set_state(status == LocalizerStatus::kLost ? process_status_t::ERROR
+                        : status == LocalizerStatus::kOk ? process_status_t::OK
+                                                         : process_status_t::DEGRADED,
+                        status == LocalizerStatus::kLost        ? "lost: the scans do not fit the map"
+                        : status == LocalizerStatus::kUncertain ? "uncertain"
+                                                                : "");
+    }
+    const NodeCounters& c = node.counters();
+    process.count_drop(ch.lidar, c.stale_scans - reported.stale_scans);
+    process.count_drop(ch.odometry, c.stale_odometry - reported.stale_odometry);
+    reported = c;
+  };
+  process.subscribe<odometry_t>(ch.odometry, [&](const odometry_t& m, const ReceiveInfo&) {
+    node.on_odometry(m.utime, {m.x, m.y, m.theta});
+  });
+  process.subscribe<laser_scan_t>(
+      ch.lidar,
+      [&](const laser_scan_t& m, const ReceiveInfo& info) {
+        node.on_scan(from_message(m));
+        publish_ready(info.receive_utime - (m.utime > 0 ? 0 : 0));
+      },
+      true);
+  process.subscribe<line_objects_t>(
+      ch.line_objects,
+      [&](const line_objects_t& m, const ReceiveInfo&) {
+        node.on_objects(from_message(m));
+        publish_ready(std::numeric_limits<int64_t>::min() / 2);
+      },
+      true);
+  process.subscribe<initial_pose_t>(ch.initial_pose, [&](const initial_pose_t& m, const ReceiveInfo&) {
+    node.on_initial_pose({m.x, m.y, m.theta}, {std::sqrt(std::max(m.cov[0], 1e-6)), std::sqrt(std::max(m.cov[4], 1e-6)),
+                                               std::sqrt(std::max(m.cov[8], 1e-6))});
+    process.log_info("initial pose set");
+  });
+  // A scan whose objects do not come is processed without them after objects_wait.
+  process.every(0.01, [&] { publish_ready(std::numeric_limits<int64_t>::max()); });
+  return process.run();
+}
+
+}  // namespace
+}  // namespace slamer
+
+int main(int argc, char** argv) {
+  return slamer::process_main(
+      argc, argv, "slamer-localizer",
+      "SLAMER: localization and map-assisted environment recognition with a particle filter. Publishes\n"
+      "POSE, SEMANTIC_OBJECTS and PARTICLES. --mode lfm|slfm|slamer picks the measurement model;\n"
+      "--replay IN --out OUT runs offline on a log, as fast as it can, the same for the same seed.",
+      [](slamer::CommandLine& cli) {
+        cli.add_option("mode", "MODE", "lfm, slfm or slamer (overrides the config)");
+        cli.add_option("seed", "N", "random seed (overrides the config)");
+        cli.add_option("map", "FILE", "semantic map YAML (overrides the config)");
+        cli.add_option("replay", "IN.lcm", "offline: read this log");
+        cli.add_option("out", "OUT.lcm", "offline: write the log with the results added here");
+      },
+      [](const slamer::CommandLine& cli) {
+        slamer::LocalizerProcessConfig config;
+        if (cli.has("config")) {
+          config = slamer::load_options<slamer::LocalizerProcessConfig>(cli.get("config"));
+        }
+        if (cli.has("mode")) {
+          try {
+            config.localizer.mode = slamer::parse_mode(cli.get("mode"));
+          } catch (const std::invalid_argument& e) {
+            throw slamer::CommandLineError(std::string("option '--mode': ") + e.what());
+          }
+        }
+        if (cli.has("seed")) {
+          const int64_t seed = cli.get_int("seed");
+          if (seed < 0) {
+            throw slamer::CommandLineError("option '--seed': expected a number >= 0");
+          }
+          config.localizer.seed = static_cast<uint64_t>(seed);
+        }
+        if (cli.has("map")) {
+          config.map = cli.get("map");
+        }
+        if (cli.has("replay") != cli.has("out")) {
+          throw slamer::CommandLineError("--replay and --out go together");
+        }
+        return cli.has("replay") ? slamer::run_replay(config, cli.get("replay"), cli.get("out"))
+                                 : slamer::run_live(config, cli.get("lcm-url"));
+      });
+}

@@ -1,0 +1,35 @@
+#include "localizer/motion_model.hpp"
+
+#include <cmath>
+
+namespace slamer {
+
+OdometryIncrement decompose(const Pose2& from, const Pose2& to) {
+  const double dx = to.x - from.x;
+  const double dy = to.y - from.y;
+  const double trans = std::hypot(dx, dy);
+  // Below 1 mm the direction of travel is noise: all of the turn is rot2.
+  const double rot1 = trans < 1e-3 ? 0.0 : angle_diff(std::atan2(dy, dx), from.theta);
+  // A base that reversed moves against its heading: keep rot1 small, translate backwards.
+  if (std::abs(rot1) > M_PI / 2) {
+    const double back = angle_diff(rot1, M_PI);
+    return {back, -trans, angle_diff(angle_diff(to.theta, from.theta), back)};
+  }
+  return {rot1, trans, angle_diff(angle_diff(to.theta, from.theta), rot1)};
+}
+
+Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const LocalizerOptions& o, std::mt19937& rng) {
+  const double trans = std::abs(u.trans);
+  const double sd_rot1 = o.alpha_rot_from_rot * std::abs(u.rot1) + o.alpha_rot_from_trans * trans;
+  const double sd_trans =
+      o.alpha_trans_from_trans * trans + o.alpha_trans_from_rot * (std::abs(u.rot1) + std::abs(u.rot2));
+  const double sd_rot2 = o.alpha_rot_from_rot * std::abs(u.rot2) + o.alpha_rot_from_trans * trans;
+  std::normal_distribution<double> standard(0.0, 1.0);
+  const double rot1 = u.rot1 + sd_rot1 * standard(rng);
+  const double t = u.trans + sd_trans * standard(rng);
+  const double rot2 = u.rot2 + sd_rot2 * standard(rng);
+  const double heading = pose.theta + rot1;
+  return {pose.x + t * std::cos(heading), pose.y + t * std::sin(heading), wrap_angle(heading + rot2)};
+}
+
+}  // namespace slamer

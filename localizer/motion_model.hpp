@@ -1,0 +1,26 @@
+// Sampling motion model of a differential-drive base from odometry (paper
+// Eq. (5), u ~ N(u_t, Sigma_u)): the odometry increment between two times is
+// decomposed into rotate / translate / rotate (Probabilistic Robotics 5.4),
+// each perturbed with a standard deviation that grows with the increment.
+#pragma once
+
+#include <random>
+
+#include "common/geometry/se2.hpp"
+#include "localizer/localizer_options.hpp"
+
+namespace slamer {
+
+struct OdometryIncrement {
+  double rot1 = 0.0;
+  double trans = 0.0;
+  double rot2 = 0.0;
+};
+
+// The increment from odometry pose `from` to `to` (odometry frame).
+OdometryIncrement decompose(const Pose2& from, const Pose2& to);
+
+// `pose` moved by the increment with noise drawn from `rng`.
+Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const LocalizerOptions& options, std::mt19937& rng);
+
+}  // namespace slamer

@@ -1,0 +1,380 @@
+#include "localizer/particle_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "localizer/motion_model.hpp"
+#include "localizer/recognition_model.hpp"
+
+namespace slamer {
+
+struct ParticleFilter::PreparedScan {
+  std::vector<float> x;  // used beams' end points in the sensor frame, in cells
+  std::vector<float> y;
+  std::vector<int> field;  // SLFM: class field per beam, -1 = unknown class (pose-independent)
+};
+
+struct ParticleFilter::PreparedObjects {
+  struct Object {
+    LineObject object;
+    std::vector<Eigen::Vector2d> samples;  // sensor frame [m]
+    std::vector<double> log_recognition;   // per recognition class: log Dir(c-hat; a(l))
+    std::vector<int> field;                // per recognition class: map class, -1 free space, -2 none
+  };
+  std::vector<Object> objects;
+  std::vector<std::string> class_names;
+};
+
+namespace {
+
+constexpr int kFreeSpace = -1;
+constexpr int kNoField = -2;
+
+}  // namespace
+
+ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount)
+    : options_(options),
+      mount_(lidar_mount),
+      geometry_(map.geometry),
+      field_(obstacle_distance_field(map), options.lfm),
+      rng_(static_cast<std::mt19937::result_type>(options.seed)) {
+  if (options.particles < 1) {
+    throw std::invalid_argument("the filter needs at least one particle");
+  }
+  const std::vector<DistanceField> distances = class_distance_fields(map);
+  for (std::size_t c = 0; c < map.classes.size(); ++c) {
+    map_classes_.push_back(map.classes[c].name);
+    class_distances_.push_back(distances[c]);
+    if (options.mode == LocalizerMode::kSlfm) {
+      class_fields_.emplace_back(distances[c], options.lfm);
+    }
+  }
+  std::vector<uint8_t> free(map.geometry.size());
+  for (std::size_t i = 0; i < free.size(); ++i) {
+    free[i] = map.occupancy[i] == Occupancy::kFree && map.labels[i] < 0 ? 1 : 0;
+  }
+  free_distance_ = DistanceField(map.geometry, free);
+}
+
+void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& sigma) {
+  std::normal_distribution<double> standard(0.0, 1.0);
+  particles_.assign(static_cast<std::size_t>(options_.particles), {});
+  const double log_uniform = -std::log(static_cast<double>(options_.particles));
+  for (Particle& p : particles_) {
+    p.pose = {mean.x + sigma[0] * standard(rng_), mean.y + sigma[1] * standard(rng_),
+              wrap_angle(mean.theta + sigma[2] * standard(rng_))};
+    p.log_weight = log_uniform;
+  }
+  low_likelihood_scans_ = 0;
+  updated_ = false;
+}
+
+void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
+  const OdometryIncrement u = decompose(odom_from, odom_to);
+  for (Particle& p : particles_) {
+    p.pose = sample_motion(p.pose, u, options_, rng_);
+  }
+}
+
+ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, const LineObjectSet* objects) const {
+  PreparedScan prepared;
+  const double to_cells = 1.0 / geometry_.resolution;
+  const float range_min = std::isfinite(scan.range_min) ? scan.range_min : 0.0f;
+  for (std::size_t i = 0; i < scan.ranges.size(); i += static_cast<std::size_t>(options_.beam_step)) {
+    const float r = scan.ranges[i];
+    // Valid returns only: max-range beams score the same for every particle,
+    // and NaN / too-close beams say nothing about the pose.
+    if (!(r >= range_min && r < scan.range_max) || !std::isfinite(scan.angle(i))) {
+      continue;
+    }
+    const double a = scan.angle(i);
+    prepared.x.push_back(static_cast<float>(r * std::cos(a) * to_cells));
+    prepared.y.push_back(static_cast<float>(r * std::sin(a) * to_cells));
+    int field = -1;
+    if (options_.mode == LocalizerMode::kSlfm && objects != nullptr) {
+      // The class of the physical object the beam's point lies on, if any.
+      const Eigen::Vector2d p(r * std::cos(a), r * std::sin(a));
+      double best = options_.slfm_support;
+      for (const LineObject& o : objects->objects) {
+        if (o.kind != LineKind::kPhysical) {
+          continue;
+        }
+        const Eigen::Vector2d ab = o.end - o.start;
+        const double t = ab.squaredNorm() > 0 ? std::clamp((p - o.start).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        const double d = (o.start + t * ab - p).norm();
+        const int label = most_likely(o.probs);
+        if (d <= best && label >= 0 && static_cast<std::size_t>(label) < objects->class_names.size()) {
+          best = d;
+          field = -1;
+          const auto mapped = options_.class_map.find(objects->class_names[static_cast<std::size_t>(label)]);
+          if (mapped != options_.class_map.end()) {
+            const auto it = std::find(map_classes_.begin(), map_classes_.end(), mapped->second);
+            field = it == map_classes_.end() ? -1 : static_cast<int>(it - map_classes_.begin());
+          }
+        }
+      }
+    }
+    prepared.field.push_back(field);
+  }
+  return prepared;
+}
+
+ParticleFilter::PreparedObjects ParticleFilter::prepare_objects(const LineObjectSet& set) const {
+  PreparedObjects prepared;
+  prepared.class_names = set.class_names;
+  for (const LineObject& object : set.objects) {
+    if (object.probs.size() != set.class_names.size() || set.class_names.empty()) {
+      continue;  // a malformed object tells nothing
+    }
+    PreparedObjects::Object o;
+    o.object = object;
+    const int n = options_.object_samples;
+    for (int s = 0; s < n; ++s) {
+      const double t = n == 1 ? 0.5 : static_cast<double>(s) / (n - 1);
+      o.samples.push_back(object.start + t * (object.end - object.start));
+    }
+    for (std::size_t l = 0; l < set.class_names.size(); ++l) {
+      o.log_recognition.push_back(log_dirichlet(object.probs, static_cast<int>(l), options_.dirichlet_a1,
+                                                options_.dirichlet_a2, options_.min_probability));
+      int field = kNoField;
+      const auto mapped = options_.class_map.find(set.class_names[l]);
+      if (mapped != options_.class_map.end()) {
+        if (mapped->second.empty()) {
+          field = kFreeSpace;
+        } else {
+          const auto it = std::find(map_classes_.begin(), map_classes_.end(), mapped->second);
+          field = it == map_classes_.end() ? kNoField : static_cast<int>(it - map_classes_.begin());
+        }
+      }
+      o.field.push_back(field);
+    }
+    prepared.objects.push_back(std::move(o));
+  }
+  return prepared;
+}
+
+double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const {
+  // Sensor pose in grid cells: one transform per particle, then a multiply-add per beam.
+  const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
+  const float c = static_cast<float>(std::cos(grid.theta));
+  const float s = static_cast<float>(std::sin(grid.theta));
+  const float tx = static_cast<float>(grid.x / geometry_.resolution);
+  const float ty = static_cast<float>(grid.y / geometry_.resolution);
+  const float width = static_cast<float>(geometry_.width);
+  const float height = static_cast<float>(geometry_.height);
+  const bool slfm = options_.mode == LocalizerMode::kSlfm;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < scan.x.size(); ++i) {
+    const float gx = c * scan.x[i] - s * scan.y[i] + tx;
+    const float gy = s * scan.x[i] + c * scan.y[i] + ty;
+    const LikelihoodField* field = &field_;
+    if (slfm) {
+      if (scan.field[i] < 0) {
+        continue;  // unknown class: the exponential model, the same for every pose
+      }
+      field = &class_fields_[static_cast<std::size_t>(scan.field[i])];
+    }
+    if (gx >= 0.0f && gy >= 0.0f && gx < width && gy < height) {
+      sum += field->log_likelihood(static_cast<int>(gx), static_cast<int>(gy));
+    } else {
+      sum += field->off_map_log_likelihood();
+    }
+  }
+  return options_.beam_weight * sum;
+}
+
+double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
+                                              std::vector<std::vector<double>>* class_terms) const {
+  // The sensor pose in grid cells: one transform per particle.
+  const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
+  const double c = std::cos(grid.theta);
+  const double s = std::sin(grid.theta);
+  const double to_cells = 1.0 / geometry_.resolution;
+  // An object off the map, or a class with no cells, is this far from it: the
+  // same for every pose, so it neither helps nor hurts.
+  const double far = 3.0 * options_.prior_sigma;
+  double total = 0.0;
+  std::vector<double> terms;
+  std::vector<std::size_t> cells;  // sample cells on the map; off-map samples are left out
+  for (const PreparedObjects::Object& o : objects.objects) {
+    cells.clear();
+    for (const Eigen::Vector2d& p : o.samples) {
+      const double gx = (c * p.x() - s * p.y() + grid.x) * to_cells;
+      const double gy = (s * p.x() + c * p.y() + grid.y) * to_cells;
+      if (gx >= 0.0 && gy >= 0.0 && gx < geometry_.width && gy < geometry_.height) {
+        cells.push_back(geometry_.index(static_cast<int>(gx), static_cast<int>(gy)));
+      }
+    }
+    const double off_map = far * static_cast<double>(o.samples.size() - cells.size());
+    terms.assign(o.field.size(), 0.0);
+    for (std::size_t l = 0; l < o.field.size(); ++l) {
+      const int field = o.field[l];
+      double d = far;
+      if (field != kNoField) {
+        const DistanceField& distances =
+            field == kFreeSpace ? free_distance_ : class_distances_[static_cast<std::size_t>(field)];
+        double sum = off_map;
+        for (const std::size_t cell : cells) {
+          sum += std::min(static_cast<double>(distances.at_index(cell)), far);  // +inf (no such cells) becomes far
+        }
+        d = sum / static_cast<double>(o.samples.size());
+      }
+      terms[l] = o.log_recognition[l] + log_normal_density(d, options_.prior_sigma);
+    }
+    total += options_.object_weight * log_sum_exp(terms);
+    if (class_terms != nullptr) {
+      class_terms->push_back(terms);
+    }
+  }
+  return total;
+}
+
+double ParticleFilter::object_log_likelihood(const Pose2& pose, const LineObject& object,
+                                             const std::vector<std::string>& classes) const {
+  LineObjectSet set;
+  set.class_names = classes;
+  set.objects = {object};
+  return objects_log_likelihood(pose, prepare_objects(set), nullptr);
+}
+
+double ParticleFilter::scan_log_likelihood(const Pose2& pose, const LaserScan& scan) const {
+  return beams_log_likelihood(pose, prepare(scan, nullptr));
+}
+
+UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* objects) {
+  UpdateResult result;
+  if (particles_.empty()) {
+    return result;
+  }
+  const PreparedScan beams = prepare(scan, objects);
+  const PreparedObjects prepared_objects = objects != nullptr ? prepare_objects(*objects) : PreparedObjects{};
+  const bool use_objects = options_.mode == LocalizerMode::kSlamer;
+  std::vector<double> log_likelihood(particles_.size());
+  std::vector<double> beam_part(particles_.size());
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    beam_part[i] = beams_log_likelihood(particles_[i].pose, beams);
+    log_likelihood[i] =
+        beam_part[i] + (use_objects ? objects_log_likelihood(particles_[i].pose, prepared_objects, nullptr) : 0.0);
+    particles_[i].log_weight += log_likelihood[i];
+  }
+  // Normalize in log space.
+  double peak = -std::numeric_limits<double>::infinity();
+  for (const Particle& p : particles_) {
+    peak = std::max(peak, p.log_weight);
+  }
+  double sum = 0.0;
+  for (const Particle& p : particles_) {
+    sum += std::exp(p.log_weight - peak);
+  }
+  const double log_sum = peak + std::log(sum);
+  double mean_beam = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    particles_[i].log_weight -= log_sum;
+    mean_beam += std::exp(particles_[i].log_weight) * beam_part[i];
+  }
+  const std::size_t used_beams = beams.x.size();
+  result.mean_log_likelihood =
+      used_beams > 0 ? mean_beam / (options_.beam_weight * static_cast<double>(used_beams)) : 0.0;
+
+  // (D) the objects' class posteriors at the most likely particle's pose.
+  const auto best =
+      static_cast<std::size_t>(std::max_element(log_likelihood.begin(), log_likelihood.end()) - log_likelihood.begin());
+  const Pose2 best_sensor = compose(particles_[best].pose, mount_);
+  std::vector<std::vector<double>> class_terms;
+  objects_log_likelihood(particles_[best].pose, prepared_objects, &class_terms);
+  result.semantic.utime = scan.utime;
+  result.semantic.seq = scan.seq;
+  result.semantic.class_names = prepared_objects.class_names;
+  for (std::size_t k = 0; k < prepared_objects.objects.size(); ++k) {
+    const LineObject& o = prepared_objects.objects[k].object;
+    const double norm = log_sum_exp(class_terms[k]);
+    std::vector<float> posterior;
+    for (const double t : class_terms[k]) {
+      posterior.push_back(static_cast<float>(std::exp(t - norm)));
+    }
+    result.semantic.objects.push_back({o.kind, transform_point(best_sensor, o.start),
+                                       transform_point(best_sensor, o.end), o.npoints, posterior,
+                                       most_likely(posterior)});
+  }
+
+  updated_ = true;
+  if (used_beams > 0 && result.mean_log_likelihood < options_.lost_mean_log_likelihood) {
+    ++low_likelihood_scans_;
+  } else {
+    low_likelihood_scans_ = 0;
+  }
+  result.estimate = estimate();
+  if (result.estimate.ess < options_.resample_threshold * static_cast<double>(particles_.size())) {
+    resample();
+    result.resampled = true;
+  }
+  return result;
+}
+
+PoseEstimate ParticleFilter::estimate() const {
+  PoseEstimate e;
+  if (particles_.empty()) {
+    return e;
+  }
+  std::vector<double> weights;
+  std::vector<double> headings;
+  double sum_squares = 0.0;
+  for (const Particle& p : particles_) {
+    const double w = std::exp(p.log_weight);
+    weights.push_back(w);
+    headings.push_back(p.pose.theta);
+    e.pose.x += w * p.pose.x;
+    e.pose.y += w * p.pose.y;
+    sum_squares += w * w;
+  }
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  e.pose.x /= total;
+  e.pose.y /= total;
+  e.pose.theta = circular_mean(headings, weights).value_or(particles_.front().pose.theta);
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const double w = weights[i] / total;
+    const double d[3] = {particles_[i].pose.x - e.pose.x, particles_[i].pose.y - e.pose.y,
+                         angle_diff(particles_[i].pose.theta, e.pose.theta)};
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        e.covariance[r * 3 + c] += w * d[r] * d[c];
+      }
+    }
+  }
+  e.ess = (total * total) / sum_squares;
+  if (!updated_) {
+    e.status = LocalizerStatus::kInitializing;
+  } else if (low_likelihood_scans_ >= options_.lost_after) {
+    e.status = LocalizerStatus::kLost;
+  } else if (std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.uncertain_position_sigma) {
+    e.status = LocalizerStatus::kUncertain;
+  } else {
+    e.status = LocalizerStatus::kOk;
+  }
+  return e;
+}
+
+void ParticleFilter::resample() {
+  // Systematic (low-variance) resampling: one random offset, N evenly spaced pointers.
+  const std::size_t n = particles_.size();
+  std::uniform_real_distribution<double> offset(0.0, 1.0 / static_cast<double>(n));
+  double pointer = offset(rng_);
+  double cumulative = std::exp(particles_[0].log_weight);
+  std::size_t source = 0;
+  std::vector<Particle> next;
+  next.reserve(n);
+  const double log_uniform = -std::log(static_cast<double>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    while (pointer > cumulative && source + 1 < n) {
+      ++source;
+      cumulative += std::exp(particles_[source].log_weight);
+    }
+    next.push_back({particles_[source].pose, log_uniform});
+    pointer += 1.0 / static_cast<double>(n);
+  }
+  particles_ = std::move(next);
+}
+
+}  // namespace slamer

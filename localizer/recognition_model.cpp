@@ -1,0 +1,40 @@
+#include "localizer/recognition_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace slamer {
+
+double log_dirichlet(const std::vector<float>& probs, int true_class, double a1, double a2, double min_probability) {
+  const auto n = static_cast<double>(probs.size());
+  double log_density = std::lgamma(a1 + (n - 1.0) * a2) - std::lgamma(a1) - (n - 1.0) * std::lgamma(a2);
+  for (std::size_t l = 0; l < probs.size(); ++l) {
+    const double a = static_cast<int>(l) == true_class ? a1 : a2;
+    const double p = std::max(static_cast<double>(probs[l]), min_probability);
+    log_density += (a - 1.0) * std::log(p);
+  }
+  return log_density;
+}
+
+double log_normal_density(double d, double sigma) {
+  return -0.5 * (d / sigma) * (d / sigma) - std::log(sigma * std::sqrt(2.0 * std::numbers::pi));
+}
+
+double log_sum_exp(const std::vector<double>& terms) {
+  if (terms.empty()) {
+    return -std::numeric_limits<double>::infinity();
+  }
+  const double peak = *std::max_element(terms.begin(), terms.end());
+  if (!std::isfinite(peak)) {
+    return peak;
+  }
+  double sum = 0.0;
+  for (const double t : terms) {
+    sum += std::exp(t - peak);
+  }
+  return peak + std::log(sum);
+}
+
+}  // namespace slamer

@@ -1,0 +1,26 @@
+// SLAMER's per-object terms (paper Eqs. (7)-(9)), in log space.
+//
+// Recognition model: the recognizer's probability vector c-hat is Dirichlet
+// distributed with concentration a1 on the true class and a2 elsewhere,
+//   log Dir(c; a) = lgamma(sum a) - sum lgamma(a_l) + sum (a_l - 1) log c_l,
+// with lgamma throughout (tgamma overflows above about 171).
+// Map prior: p(c = l | x, m) = N(d_l; 0, sigma_d), d_l the representative
+// distance from the object, placed by the particle's pose, to the nearest
+// cell of class l's map. It depends on the pose and is not renormalized per
+// particle (the published implementation did, and its SLAMER term cancelled).
+#pragma once
+
+#include <vector>
+
+namespace slamer {
+
+// log Dir(probs; a) with a_l = (l == true_class ? a1 : a2); probs floored at min_probability.
+double log_dirichlet(const std::vector<float>& probs, int true_class, double a1, double a2, double min_probability);
+
+// log N(d; 0, sigma) (a density, with its normalizer).
+double log_normal_density(double d, double sigma);
+
+// log of sum_l exp(terms[l]), stable; -inf for an empty list.
+double log_sum_exp(const std::vector<double>& terms);
+
+}  // namespace slamer

@@ -1,0 +1,278 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "localizer/localizer_node.hpp"
+#include "localizer/motion_model.hpp"
+#include "localizer/particle_filter.hpp"
+#include "localizer/recognition_model.hpp"
+#include "recognizer/line_recognizer.hpp"
+#include "tools/sim/simulator.hpp"
+
+namespace slamer {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+TEST(RecognitionModel, DirichletMatchesHandComputedValues) {
+  // Dir((0.5, 0.3, 0.2); a = (2, 1, 1)) = Gamma(4) / (Gamma(2) Gamma(1) Gamma(1)) * 0.5 = 6 * 0.5 = 3.
+  EXPECT_NEAR(log_dirichlet({0.5f, 0.3f, 0.2f}, 0, 2.0, 1.0, 1e-9), std::log(3.0), 1e-6);
+  // True class 1 instead: 6 * 0.3.
+  EXPECT_NEAR(log_dirichlet({0.5f, 0.3f, 0.2f}, 1, 2.0, 1.0, 1e-9), std::log(1.8), 1e-6);
+  // a1 == a2: the recognition model cannot tell the classes apart.
+  EXPECT_DOUBLE_EQ(log_dirichlet({0.7f, 0.2f, 0.1f}, 0, 2.0, 2.0, 1e-9),
+                   log_dirichlet({0.7f, 0.2f, 0.1f}, 2, 2.0, 2.0, 1e-9));
+}
+
+TEST(RecognitionModel, DirichletWithLargeParametersWhereTgammaOverflows) {
+  ASSERT_TRUE(std::isinf(std::tgamma(300.0 + 7 * 200.0)));
+  // log Gamma(n) = sum_{k<n} log k for integers: an independent reference.
+  const auto log_factorial = [](int n) {
+    double s = 0.0;
+    for (int k = 2; k <= n; ++k) {
+      s += std::log(static_cast<double>(k));
+    }
+    return s;
+  };
+  const std::vector<float> p{0.3f, 0.1f, 0.1f, 0.1f, 0.1f, 0.1f, 0.1f, 0.1f};
+  double expected = log_factorial(300 + 7 * 200 - 1) - log_factorial(299) - 7 * log_factorial(199);
+  expected += 299 * std::log(0.3);
+  for (int l = 1; l < 8; ++l) {
+    expected += 199 * std::log(static_cast<double>(0.1f));
+  }
+  const double value = log_dirichlet(p, 0, 300.0, 200.0, 1e-9);
+  EXPECT_TRUE(std::isfinite(value));
+  EXPECT_NEAR(value, expected, 1e-6 * std::abs(expected));
+}
+
+TEST(RecognitionModel, NormalAndLogSumExp) {
+  EXPECT_NEAR(log_normal_density(0.3, 0.3), -0.5 - std::log(0.3 * std::sqrt(2 * kPi)), 1e-12);
+  EXPECT_NEAR(log_sum_exp({-1000.0, -1000.0}), -1000.0 + std::log(2.0), 1e-12);
+  EXPECT_NEAR(log_sum_exp({std::log(0.25), std::log(0.5)}), std::log(0.75), 1e-12);
+  EXPECT_TRUE(std::isinf(log_sum_exp({})));
+}
+
+TEST(MotionModel, NoiselessMotionIsExactAndNoiseHasTheRightSpread) {
+  const Pose2 from{1.0, 2.0, 0.3};
+  const Pose2 to = compose(from, {0.5, 0.1, -0.2});
+  const OdometryIncrement u = decompose(from, to);
+  LocalizerOptions exact;
+  exact.alpha_rot_from_rot = exact.alpha_rot_from_trans = exact.alpha_trans_from_trans = exact.alpha_trans_from_rot =
+      0.0;
+  std::mt19937 rng(1);
+  const Pose2 start{-3.0, 4.0, 1.0};
+  const Pose2 moved = sample_motion(start, u, exact, rng);
+  const Pose2 expected = compose(start, between(from, to));
+  EXPECT_NEAR(moved.x, expected.x, 1e-12);
+  EXPECT_NEAR(moved.y, expected.y, 1e-12);
+  EXPECT_NEAR(angle_diff(moved.theta, expected.theta), 0.0, 1e-12);
+  // Straight 1 m: translation noise sd = alpha3 * 1 m.
+  LocalizerOptions noisy;
+  noisy.alpha_trans_from_trans = 0.1;
+  noisy.alpha_rot_from_rot = noisy.alpha_rot_from_trans = noisy.alpha_trans_from_rot = 0.0;
+  const OdometryIncrement straight = decompose({}, {1.0, 0.0, 0.0});
+  double sum = 0.0;
+  double squares = 0.0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double x = sample_motion({}, straight, noisy, rng).x;
+    sum += x;
+    squares += x * x;
+  }
+  EXPECT_NEAR(sum / n, 1.0, 0.005);
+  EXPECT_NEAR(std::sqrt(squares / n - (sum / n) * (sum / n)), 0.1, 0.005);
+  // Driving backwards is a small rotation and a negative translation, not a half turn.
+  const OdometryIncrement back = decompose({}, {-0.5, 0.0, 0.0});
+  EXPECT_NEAR(back.trans, -0.5, 1e-12);
+  EXPECT_NEAR(back.rot1, 0.0, 1e-12);
+}
+
+// The small room world, its map, and a scan and objects simulated at a pose.
+struct SmallWorld {
+  WorldOptions options = load_options<WorldOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml");
+  RobotOptions robot = load_options<RobotOptions>(options.robot_path);
+  SemanticMap map = load_semantic_map(options.map_path);
+  TrueWorld world{map, options, "small_room"};
+
+  LaserScan scan_at(const Pose2& pose) const {
+    LaserScan scan;
+    scan.angle_min = robot.lidar.angle_min;
+    scan.angle_increment = robot.lidar.angle_increment();
+    scan.range_min = static_cast<float>(robot.lidar.range_min);
+    scan.range_max = static_cast<float>(robot.lidar.range_max);
+    std::mt19937 rng(4);
+    const Pose2 sensor = compose(pose, robot.lidar.mount);
+    for (int i = 0; i < robot.lidar.beams; ++i) {
+      const double r =
+          world.cast({sensor.x, sensor.y}, sensor.theta + scan.angle(static_cast<std::size_t>(i)), 31.0, 0.0, rng);
+      scan.ranges.push_back(r <= 30.0 ? static_cast<float>(r) : std::numeric_limits<float>::infinity());
+    }
+    return scan;
+  }
+};
+
+TEST(ParticleFilter, LfmPrefersTheTruePose) {
+  const SmallWorld w;
+  LocalizerOptions options;
+  const ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+  const Pose2 truth{2.0, 3.0, 0.2};
+  const LaserScan scan = w.scan_at(truth);
+  const double right = filter.scan_log_likelihood(truth, scan);
+  EXPECT_GT(right, filter.scan_log_likelihood({2.3, 3.0, 0.2}, scan));
+  EXPECT_GT(right, filter.scan_log_likelihood({2.0, 2.8, 0.2}, scan));
+  EXPECT_GT(right, filter.scan_log_likelihood({2.0, 3.0, 0.3}, scan));
+}
+
+TEST(ParticleFilter, SlamerTermDiscriminatesRightFromWrongPose) {
+  const SmallWorld w;
+  LocalizerOptions options;
+  const ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+  // The doorway at x = 6, y 2.5..3.5, recognized as an open door, seen from (4, 3) facing +x.
+  const Pose2 truth{4.0, 3.0, 0.0};
+  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
+  const std::vector<std::string> classes = RecognizerOptions{}.classes;
+  LineObject door;
+  door.kind = LineKind::kSpatial;
+  door.start = transform_point(inverse(sensor), {6.0, 2.5});
+  door.end = transform_point(inverse(sensor), {6.0, 3.5});
+  door.probs = std::vector<float>(classes.size(), 0.02f);
+  door.probs[0] = 0.86f;  // open_door
+  const double right = filter.object_log_likelihood(truth, door, classes);
+  EXPECT_GT(right, filter.object_log_likelihood({4.0, 4.2, 0.0}, door, classes) + 1.0);
+  EXPECT_GT(right, filter.object_log_likelihood({3.4, 3.0, 0.0}, door, classes) + 1.0);
+}
+
+// Drives the small room with simulator, recognizer and filter in the loop.
+class FilterLoop : public SimulatorSink {
+ public:
+  FilterLoop(const SmallWorld& w, LocalizerMode mode) : w_(w), recognizer_(RecognizerOptions{}) {
+    LocalizerOptions options;
+    options.mode = mode;
+    options.particles = 300;
+    filter_ = std::make_unique<ParticleFilter>(w.map, options, w.robot.lidar.mount);
+    filter_->initialize({w.options.start.x + 0.3, w.options.start.y - 0.2, w.options.start.theta + 0.1},
+                        {0.3, 0.3, 0.1});
+  }
+  void on_scan(const LaserScan& scan, int64_t) override {
+    if (!have_odometry_) {
+      return;
+    }
+    if (last_odometry_.has_value()) {
+      filter_->predict(*last_odometry_, odometry_);
+    }
+    last_odometry_ = odometry_;
+    const LineObjectSet objects = recognizer_.recognize(scan);
+    const UpdateResult result = filter_->update(scan, &objects);
+    for (const LineObject& o : result.semantic.objects) {
+      double sum = 0.0;
+      for (const float p : o.probs) {
+        sum += p;
+      }
+      max_probability_error_ = std::max(max_probability_error_, std::abs(sum - 1.0));
+    }
+    const Pose2 truth = truth_;
+    errors_.push_back(std::hypot(result.estimate.pose.x - truth.x, result.estimate.pose.y - truth.y));
+    last_status_ = result.estimate.status;
+  }
+  void on_encoders(const EncoderSample&) override {}
+  void on_odometry(const OdometrySample& s) override {
+    odometry_ = s.pose;
+    have_odometry_ = true;
+  }
+  void on_ground_truth(const GroundTruthSample& s) override { truth_ = s.pose; }
+
+  const SmallWorld& w_;
+  LineRecognizer recognizer_;
+  std::unique_ptr<ParticleFilter> filter_;
+  Pose2 odometry_;
+  bool have_odometry_ = false;
+  std::optional<Pose2> last_odometry_;
+  Pose2 truth_;
+  std::vector<double> errors_;
+  double max_probability_error_ = 0.0;
+  LocalizerStatus last_status_ = LocalizerStatus::kInitializing;
+};
+
+void expect_converges(LocalizerMode mode) {
+  const SmallWorld w;
+  FilterLoop loop(w, mode);
+  SimOptions sim;
+  sim.max_duration = 20.0;
+  Simulator simulator(w.world, w.options, w.robot, sim, 3);
+  while (simulator.step(loop)) {
+  }
+  ASSERT_GT(loop.errors_.size(), 400u);
+  // Started 0.36 m off; after the first seconds within a few centimetres and staying there.
+  double late_max = 0.0;
+  for (std::size_t i = loop.errors_.size() / 4; i < loop.errors_.size(); ++i) {
+    late_max = std::max(late_max, loop.errors_[i]);
+  }
+  EXPECT_LT(late_max, 0.15);
+  EXPECT_LT(loop.errors_.back(), 0.08);
+  EXPECT_LT(loop.max_probability_error_, 1e-5);
+  EXPECT_EQ(loop.last_status_, LocalizerStatus::kOk);
+}
+
+TEST(ParticleFilter, LfmConvergesOnTheSmallWorld) {
+  expect_converges(LocalizerMode::kLfm);
+}
+TEST(ParticleFilter, SlamerConvergesOnTheSmallWorld) {
+  expect_converges(LocalizerMode::kSlamer);
+}
+TEST(ParticleFilter, SlfmConvergesOnTheSmallWorld) {
+  expect_converges(LocalizerMode::kSlfm);
+}
+
+TEST(ParticleFilter, WeightsStayNormalizedAndResamplingKeepsTheBest) {
+  const SmallWorld w;
+  LocalizerOptions options;
+  options.particles = 200;
+  ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+  filter.initialize({2.0, 3.0, 0.0}, {1.0, 1.0, 0.5});
+  const UpdateResult result = filter.update(w.scan_at({2.0, 3.0, 0.0}), nullptr);
+  double sum = 0.0;
+  for (const Particle& p : filter.particles()) {
+    sum += std::exp(p.log_weight);
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-9);
+  EXPECT_TRUE(result.resampled);  // spread particles, one scan: the ESS collapses
+  EXPECT_LT(std::hypot(result.estimate.pose.x - 2.0, result.estimate.pose.y - 3.0), 0.6);
+}
+
+}  // namespace
+}  // namespace slamer
+
+namespace slamer {
+namespace {
+
+TEST(LocalizerNode, OdometryBetweenScansMovesTheEstimate) {
+  const SmallWorld w;
+  LocalizerOptions options;
+  options.mode = LocalizerMode::kLfm;
+  options.particles = 100;
+  options.initial_pose = {2.0, 3.0, 0.0};
+  options.initial_sigma = {0.01, 0.01, 0.01};
+  LocalizerNode node(w.map, options, w.robot.lidar.mount);
+  // Odometry in its own frame (starting at 0), 100 Hz, driving +x at 0.5 m/s; scans at 40 Hz.
+  std::optional<NodeOutput> last;
+  for (int step = 0; step <= 200; ++step) {
+    const int64_t t = 10'000 * step;
+    node.on_odometry(t, {0.005 * step, 0.0, 0.0});
+    if (step % 4 == 0 && step > 0) {  // a scan at t - 15 ms, delivered now
+      LaserScan scan = w.scan_at({2.0 + 0.005 * step - 0.0075, 3.0, 0.0});
+      scan.utime = t - 15'000;
+      node.on_scan(scan);
+      if (auto out = node.poll(std::numeric_limits<int64_t>::max(), 0)) {
+        last = out;
+      }
+    }
+  }
+  ASSERT_TRUE(last.has_value());
+  EXPECT_NEAR(last->result.estimate.pose.x, 2.0 + 1.0 - 0.0075, 0.05);
+  EXPECT_NEAR(last->result.estimate.pose.y, 3.0, 0.05);
+  EXPECT_EQ(node.counters().scans_without_odometry, 0);
+}
+
+}  // namespace
+}  // namespace slamer
