@@ -12,6 +12,7 @@
 #include "common/config/config_reader.hpp"
 #include "common/map/semantic_map.hpp"
 #include "common/robot/robot_options.hpp"
+#include "localizer/localizer_config.hpp"
 #include "recognizer/recognizer_config.hpp"
 #include "tools/eval/eval_config.hpp"
 #include "tools/sim/floor_plan.hpp"
@@ -42,6 +43,12 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
       {"sim.yaml", [](const std::string& path) { load_options<SimProcessConfig>(path); }},
       {"eval.yaml", [](const std::string& path) { load_options<EvalConfig>(path); }},
       {"recognizer.yaml", [](const std::string& path) { load_options<RecognizerProcessConfig>(path); }},
+      {"localizer.yaml",
+       [](const std::string& path) {
+         const auto config = load_options<LocalizerProcessConfig>(path);
+         load_semantic_map(config.map);
+         load_options<RobotOptions>(config.robot);
+       }},
       {"robots/icart_mini.yaml", [](const std::string& path) { load_options<RobotOptions>(path); }},
       {"worlds/small_room.yaml", load_world},
       {"worlds/paper_indoor.yaml", load_world},
