@@ -33,8 +33,9 @@ class LocalizerNode {
   void on_initial_pose(const Pose2& pose, const std::vector<double>& sigma);
   void on_scan(const LaserScan& scan);
   void on_objects(const LineObjectSet& objects);
-  // Processes the waiting scan if its objects are in, or if it has waited
-  // `wait_us` by `now_utime` (pass INT64_MAX to flush it).
+  // Processes the waiting scan if its objects are in, or if `wait_us` has
+  // passed since the scan's utime (host time of its measurement) by
+  // `now_utime`; INT64_MAX flushes it, a very small value never waits it out.
   std::optional<NodeOutput> poll(int64_t now_utime, int64_t wait_us);
 
   const NodeCounters& counters() const { return counters_; }

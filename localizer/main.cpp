@@ -2,6 +2,7 @@
 // and PARTICLES out. Live on LCM, or offline from a log (--replay IN --out OUT).
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <limits>
 
@@ -114,7 +115,7 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
     }
   };
   const ReplayStats stats = replay_log(
-      in, out, {ch.lidar, ch.odometry, ch.line_objects, ch.initial_pose},
+      in, out, {ch.lidar, ch.odometry, ch.line_objects, ch.initial_pose}, {ch.pose, ch.semantic_objects, ch.particles},
       [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t, std::vector<OutputEvent>* outputs) {
         if (channel == ch.odometry) {
           odometry_t m{};
@@ -171,7 +172,13 @@ int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
   const auto wait_us = static_cast<int64_t>(config.objects_wait * 1e6);
   NodeCounters reported;
   const auto publish_ready = [&](int64_t now) {
-    while (std::optional<NodeOutput> result = node.poll(now, wait_us)) {
+    // Only scans actually processed count toward the processing time p50/p99.
+    for (auto start = std::chrono::steady_clock::now();; start = std::chrono::steady_clock::now()) {
+      std::optional<NodeOutput> result = node.poll(now, wait_us);
+      if (!result) {
+        break;
+      }
+      process.record_processing_time(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       for (const OutputEvent& event : outputs_of(*result, result->result.semantic.utime, config, &last_particles)) {
         process.publish_raw(event.channel, event.bytes);
       }
@@ -191,27 +198,21 @@ int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
   process.subscribe<odometry_t>(ch.odometry, [&](const odometry_t& m, const ReceiveInfo&) {
     node.on_odometry(m.utime, {m.x, m.y, m.theta});
   });
-  process.subscribe<laser_scan_t>(
-      ch.lidar,
-      [&](const laser_scan_t& m, const ReceiveInfo& info) {
-        node.on_scan(from_message(m));
-        publish_ready(info.receive_utime - (m.utime > 0 ? 0 : 0));
-      },
-      true);
-  process.subscribe<line_objects_t>(
-      ch.line_objects,
-      [&](const line_objects_t& m, const ReceiveInfo&) {
-        node.on_objects(from_message(m));
-        publish_ready(std::numeric_limits<int64_t>::min() / 2);
-      },
-      true);
+  process.subscribe<laser_scan_t>(ch.lidar, [&](const laser_scan_t& m, const ReceiveInfo& info) {
+    node.on_scan(from_message(m));
+    publish_ready(info.receive_utime);
+  });
+  process.subscribe<line_objects_t>(ch.line_objects, [&](const line_objects_t& m, const ReceiveInfo&) {
+    node.on_objects(from_message(m));
+    publish_ready(std::numeric_limits<int64_t>::min() / 2);
+  });
   process.subscribe<initial_pose_t>(ch.initial_pose, [&](const initial_pose_t& m, const ReceiveInfo&) {
     node.on_initial_pose({m.x, m.y, m.theta}, {std::sqrt(std::max(m.cov[0], 1e-6)), std::sqrt(std::max(m.cov[4], 1e-6)),
                                                std::sqrt(std::max(m.cov[8], 1e-6))});
     process.log_info("initial pose set");
   });
   // A scan whose objects do not come is processed without them after objects_wait.
-  process.every(0.01, [&] { publish_ready(std::numeric_limits<int64_t>::max()); });
+  process.every(0.01, [&] { publish_ready(now_utime()); });
   return process.run();
 }
 

@@ -94,7 +94,7 @@ int run_replay(const RecognizerProcessConfig& config, const std::string& in, con
   int64_t dropped = 0;
   const bool terminal = isatty(STDERR_FILENO) != 0;
   const ReplayStats stats = replay_log(
-      in, out, {config.lidar_channel},
+      in, out, {config.lidar_channel}, {config.line_objects_channel},
       [&](const std::string&, const std::vector<uint8_t>& bytes, int64_t, std::vector<OutputEvent>* outputs) {
         laser_scan_t scan{};
         int64_t missed = 0;

@@ -8,6 +8,7 @@
 namespace slamer {
 
 ReplayStats replay_log(const std::string& in_path, const std::string& out_path, const std::set<std::string>& channels,
+                       const std::set<std::string>& replaced,
                        const std::function<void(const std::string&, const std::vector<uint8_t>&, int64_t,
                                                 std::vector<OutputEvent>*)>& handle,
                        const std::function<void(double)>& progress) {
@@ -38,6 +39,10 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
   std::vector<OutputEvent> outputs;
   for (const lcm::LogEvent* event = in.readNextEvent(); event != nullptr; event = in.readNextEvent()) {
     ++stats.events_in;
+    if (replaced.count(event->channel) != 0) {
+      ++stats.events_replaced;
+      continue;
+    }
     write(event->channel, event->data, event->datalen, event->timestamp);
     if (channels.count(event->channel) != 0) {
       ++stats.events_handled;

@@ -1,7 +1,9 @@
 // Offline mode of an algorithm process: reads an LCM log, hands the events of
 // the channels it handles to a callback, copies every other event to the
-// output log unchanged, and writes what the callback produces right after
-// the event that caused it, with that event's timestamp. No clock and no
+// output log unchanged (except `replaced` channels: the process's own
+// outputs, which an earlier run may have left in the log), and writes what
+// the callback produces right after the event that caused it, with that
+// event's timestamp. No clock and no
 // network: the output depends only on the input (and the process's seed).
 #pragma once
 
@@ -22,6 +24,7 @@ struct OutputEvent {
 
 struct ReplayStats {
   int64_t events_in = 0;
+  int64_t events_replaced = 0;  // earlier outputs left out
   int64_t events_handled = 0;
   int64_t events_out = 0;
   int64_t handler_errors = 0;
@@ -31,6 +34,7 @@ struct ReplayStats {
 // appends its outputs. Throws std::runtime_error if a log cannot be opened or
 // written. `progress` (may be empty) is called with the fraction read.
 ReplayStats replay_log(const std::string& in_path, const std::string& out_path, const std::set<std::string>& channels,
+                       const std::set<std::string>& replaced,
                        const std::function<void(const std::string&, const std::vector<uint8_t>&, int64_t,
                                                 std::vector<OutputEvent>*)>& handle,
                        const std::function<void(double)>& progress);
