@@ -1,7 +1,5 @@
 #include "localizer/localizer_config.hpp"
 
-#include <filesystem>
-
 namespace slamer {
 
 void read_options(const ConfigReader& reader, LocalizerProcessConfig* config) {
@@ -15,15 +13,10 @@ void read_options(const ConfigReader& reader, LocalizerProcessConfig* config) {
   channels.read("pose", &config->channels.pose);
   channels.read("semantic_objects", &config->channels.semantic_objects);
   channels.read("particles", &config->channels.particles);
-  const auto resolve = [&](const std::string& path) {
-    return path.empty() || path.front() == '/' || reader.directory().empty()
-               ? path
-               : (std::filesystem::path(reader.directory()) / path).lexically_normal().string();
-  };
   reader.read("map", &config->map);
   reader.read("robot", &config->robot);
-  config->map = resolve(config->map);
-  config->robot = resolve(config->robot);
+  config->map = reader.resolve_path(config->map);
+  config->robot = reader.resolve_path(config->robot);
   reader.read("particles_out", &config->particles_out, in_range(0, 100000));
   reader.read("particles_period", &config->particles_period, positive());
   reader.read("objects_wait", &config->objects_wait, in_range(0.0, 5.0));

@@ -101,9 +101,7 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
         if (o.kind != LineKind::kPhysical) {
           continue;
         }
-        const Eigen::Vector2d ab = o.end - o.start;
-        const double t = ab.squaredNorm() > 0 ? std::clamp((p - o.start).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-        const double d = (o.start + t * ab - p).norm();
+        const double d = distance_to_segment(p, o.start, o.end);
         const int label = most_likely(o.probs);
         if (d <= best && label >= 0 && static_cast<std::size_t>(label) < objects->class_names.size()) {
           best = d;

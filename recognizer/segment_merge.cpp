@@ -1,5 +1,7 @@
 #include "recognizer/segment_merge.hpp"
 
+#include "common/geometry/se2.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -9,10 +11,7 @@
 namespace slamer {
 
 double distance_to_segment(const Eigen::Vector2d& p, const Segment2& s) {
-  const Eigen::Vector2d ab = s.b - s.a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - s.a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (s.a + t * ab - p).norm();
+  return slamer::distance_to_segment(p, s.a, s.b);
 }
 
 double orientation_difference(const Segment2& s, const Segment2& t) {

@@ -160,6 +160,13 @@ std::string ConfigReader::directory() const {
   return document_->directory;
 }
 
+std::string ConfigReader::resolve_path(const std::string& path) const {
+  if (path.empty() || std::filesystem::path(path).is_absolute() || document_->directory.empty()) {
+    return path;
+  }
+  return (std::filesystem::path(document_->directory) / path).lexically_normal().string();
+}
+
 std::string ConfigReader::full_key(std::string_view key) const {
   return prefix_ + std::string(key);
 }

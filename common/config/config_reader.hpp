@@ -78,8 +78,10 @@ class ConfigReader {
   void check_all_keys_used() const;
 
   const std::string& source() const;
-  // Directory of the source file ("" for strings), to resolve relative paths.
+  // Directory of the source file ("" for strings).
   std::string directory() const;
+  // A path written in the file: relative ones are relative to the file's directory.
+  std::string resolve_path(const std::string& path) const;
 
  private:
   struct Document;

@@ -1,5 +1,6 @@
 #include "common/geometry/se2.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -93,6 +94,13 @@ Twist2 log_se2(const Pose2& pose) {
 Pose2 interpolate(const Pose2& a, const Pose2& b, double t) {
   const Twist2 delta = log_se2(between(a, b));
   return compose(a, exp_se2({delta.vx * t, delta.vy * t, delta.omega * t}));
+}
+
+double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
 }
 
 std::optional<double> circular_mean(std::span<const double> angles, std::span<const double> weights) {

@@ -49,6 +49,9 @@ Twist2 log_se2(const Pose2& pose);
 // t outside [0, 1] extrapolates along the same arc).
 Pose2 interpolate(const Pose2& a, const Pose2& b, double t);
 
+// Distance from p to the segment a-b (to the nearer end where p projects outside it).
+double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
 // Weighted mean direction atan2(sum w sin, sum w cos). Empty input, mismatched
 // sizes, negative or non-finite weights, or a resultant too short to define a
 // direction (e.g. two opposite angles) give nullopt. Empty weights = all equal.

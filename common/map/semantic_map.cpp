@@ -15,18 +15,11 @@ namespace {
 constexpr std::array<uint8_t, 3> kIsmUnknown{205, 205, 205};
 constexpr std::array<uint8_t, 3> kIsmFree{254, 254, 254};
 
-std::string resolve(const ConfigReader& reader, const std::string& path) {
-  if (path.empty() || std::filesystem::path(path).is_absolute()) {
-    return path;
-  }
-  return (std::filesystem::path(reader.directory()) / path).lexically_normal().string();
-}
-
 cv::Mat read_image(const ConfigReader& reader, std::string_view key, const std::string& path) {
   if (path.empty()) {
     reader.fail(key, "missing (this key is required)");
   }
-  const std::string full = resolve(reader, path);
+  const std::string full = reader.resolve_path(path);
   std::error_code error;
   if (!std::filesystem::is_regular_file(full, error)) {
     reader.fail(key, "image '" + full + "' does not exist");
@@ -220,7 +213,7 @@ SemanticMap load_ism(const ConfigReader& reader) {
   check_classes(reader, "objects", map.classes);
   reader.check_all_keys_used();
 
-  const ConfigReader ogm = ConfigReader::from_file(resolve(reader, ogm_yaml));
+  const ConfigReader ogm = ConfigReader::from_file(reader.resolve_path(ogm_yaml));
   MapServerFile file;
   read_map_server(ogm, &file, &map);
   ogm.check_all_keys_used();

@@ -166,6 +166,10 @@ TEST(ConfigReader, LoadsAFileAndKnowsItsDirectory) {
   }
   const ConfigReader reader = ConfigReader::from_file(path.string());
   EXPECT_EQ(reader.directory(), path.parent_path().string());
+  EXPECT_EQ(reader.resolve_path("maps/../map.yaml"), (path.parent_path() / "map.yaml").string());
+  EXPECT_EQ(reader.resolve_path("/abs/map.yaml"), "/abs/map.yaml");
+  EXPECT_EQ(reader.resolve_path(""), "");
+  EXPECT_EQ(ConfigReader::from_string("", "text").resolve_path("map.yaml"), "map.yaml");
   double alpha = 0.0;
   reader.read("alpha", &alpha, probability());
   EXPECT_DOUBLE_EQ(alpha, 0.75);

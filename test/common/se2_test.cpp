@@ -120,6 +120,16 @@ TEST(Se2, InterpolateTurnsTheShortWay) {
   EXPECT_NEAR(std::abs(interpolate(a, b, 0.5).theta), kPi, 1e-12);
 }
 
+TEST(DistanceToSegment, PerpendicularInsideNearestEndOutside) {
+  const Eigen::Vector2d a(1.0, 1.0);
+  const Eigen::Vector2d b(3.0, 3.0);
+  EXPECT_NEAR(distance_to_segment({3.0, 1.0}, a, b), std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(distance_to_segment({4.0, 4.0}, a, b), std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(distance_to_segment({0.0, 1.0}, a, b), 1.0, 1e-12);
+  EXPECT_NEAR(distance_to_segment({2.0, 2.0}, a, b), 0.0, 1e-12);
+  EXPECT_NEAR(distance_to_segment({5.0, 1.0}, a, a), 4.0, 1e-12);  // a point segment
+}
+
 TEST(CircularMean, HandlesWrapAround) {
   const std::vector<double> angles{kPi - 0.1, -kPi + 0.1};
   const auto mean = circular_mean(angles);

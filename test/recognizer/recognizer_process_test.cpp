@@ -14,6 +14,7 @@
 
 #include "common/process/decode.hpp"
 #include "slamer/channel_stats_t.hpp"
+#include "slamer/laser_scan_t.hpp"
 #include "slamer/process_status_t.hpp"
 #include "test/support/child_process.hpp"
 
@@ -54,6 +55,25 @@ std::map<std::string, std::vector<int64_t>> utimes_by_channel(const std::string&
     result[e->channel].push_back(utime);
   }
   return result;
+}
+
+// LIDAR drops in the last PROCESS_STATUS of slamer-recognizer in a log, -1 if none.
+int64_t recognizer_drops(const std::string& path) {
+  int64_t dropped = -1;
+  lcm::LogFile log(path, "r");
+  for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
+    process_status_t status{};
+    if (e->channel == "PROCESS_STATUS" &&
+        decode_message(e->data, static_cast<std::size_t>(e->datalen), &status) == DecodeStatus::kOk &&
+        status.process == "slamer-recognizer") {
+      for (const channel_stats_t& c : status.channels) {
+        if (c.channel == "LIDAR" && c.direction == channel_stats_t::SUBSCRIBED) {
+          dropped = c.drops;
+        }
+      }
+    }
+  }
+  return dropped;
 }
 
 TEST(SlamerRecognizer, ReplayIsDeterministicAndCopiesEveryChannel) {
@@ -112,33 +132,64 @@ TEST(SlamerRecognizer, LiveWithTheRealLogplayerAndLogger) {
   for (const int64_t utime : got.at("LINE_OBJECTS")) {
     ASSERT_TRUE(scan_times.count(utime) != 0) << "LINE_OBJECTS with a utime no scan had: " << utime;
   }
-  // Every scan is either recognized or counted as dropped (a slow build loses
-  // scans in LCM's queue; the recognizer sees the seq gaps): together they are
-  // all the scans but the few loopback multicast itself may lose.
-  int64_t dropped = -1;
-  {
-    lcm::LogFile log(recorded, "r");
-    for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
-      process_status_t status{};
-      if (e->channel == "PROCESS_STATUS" &&
-          decode_message(e->data, static_cast<std::size_t>(e->datalen), &status) == DecodeStatus::kOk &&
-          status.process == "slamer-recognizer") {
-        for (const channel_stats_t& c : status.channels) {
-          if (c.channel == "LIDAR" && c.direction == channel_stats_t::SUBSCRIBED) {
-            dropped = c.drops;
-          }
-        }
-      }
-    }
-  }
+  // How many get through depends on the build's speed (a sanitizer build
+  // loses most to the kernel's buffer); what holds in every build: nothing is
+  // invented, and what was missed and noticed is counted, never more.
+  const int64_t dropped = recognizer_drops(recorded);
   ASSERT_GE(dropped, 0) << "no PROCESS_STATUS of slamer-recognizer was recorded";
   const auto recognized = static_cast<int64_t>(got.at("LINE_OBJECTS").size());
-  EXPECT_GE(recognized + dropped, static_cast<int64_t>(played.size()) * 9 / 10)
+  EXPECT_GE(recognized, 1);
+  EXPECT_LE(recognized + dropped, static_cast<int64_t>(played.size()))
       << recognized << " recognized, " << dropped << " counted as dropped, " << played.size() << " played";
-  EXPECT_LE(recognized, static_cast<int64_t>(played.size()));
   for (const std::string& f : {in, recorded}) {
     std::remove(f.c_str());
   }
+}
+
+// Scans sent slowly with seq gaps, a repeat and an older one: each accepted
+// scan gives one LINE_OBJECTS, each missed or rejected one is one drop.
+TEST(SlamerRecognizer, CountsMissedAndOutOfOrderScans) {
+  const std::string url = test::unique_lcm_url(12);
+  const std::string recorded = kBinary + "/rec_drops_recorded.lcm";
+  std::remove(recorded.c_str());
+  test::ChildProcess logger("/usr/bin/lcm-logger", {"--lcm-url=" + url, "-f", "-q", recorded});
+  test::ChildProcess recognizer(test::binary_path("slamer-recognizer"), {"--lcm-url", url});
+  lcm::LCM bus(url);
+  ASSERT_TRUE(bus.good());
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  const auto send = [&](int64_t seq, int64_t utime) {
+    laser_scan_t scan{};
+    scan.utime = utime;
+    scan.seq = seq;
+    scan.frame = "laser";
+    scan.angle_min = -2.0;
+    scan.angle_increment = 0.01;
+    scan.range_min = 0.1f;
+    scan.range_max = 30.0f;
+    scan.ranges.assign(400, 3.0f);
+    scan.nranges = 400;
+    std::vector<uint8_t> bytes(static_cast<std::size_t>(scan.getEncodedSize()));
+    scan.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    bus.publish("LIDAR", bytes.data(), static_cast<unsigned>(bytes.size()));
+    std::this_thread::sleep_for(std::chrono::milliseconds(600));  // slow enough for any build
+  };
+  const int64_t t0 = 1'700'000'000'000'000;
+  send(0, t0);
+  send(1, t0 + 25'000);
+  send(4, t0 + 100'000);  // seq 2 and 3 never arrived: 2 drops
+  send(4, t0 + 100'000);  // the same scan again: 1 drop
+  send(3, t0 + 75'000);   // older than the last: 1 drop
+  send(5, t0 + 125'000);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // a PROCESS_STATUS goes out meanwhile
+  recognizer.signal(SIGINT);
+  EXPECT_EQ(recognizer.wait(10.0), std::optional<int>(0)) << recognizer.stderr_text();
+  logger.signal(SIGINT);
+  ASSERT_TRUE(logger.wait(5.0).has_value());
+  const auto got = utimes_by_channel(recorded);
+  ASSERT_TRUE(got.count("LINE_OBJECTS") != 0) << recognizer.stderr_text();
+  EXPECT_EQ(got.at("LINE_OBJECTS"), (std::vector<int64_t>{t0, t0 + 25'000, t0 + 100'000, t0 + 125'000}));
+  EXPECT_EQ(recognizer_drops(recorded), 4);
+  std::remove(recorded.c_str());
 }
 
 }  // namespace

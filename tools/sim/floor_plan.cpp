@@ -7,16 +7,7 @@
 #include <stdexcept>
 
 namespace slamer {
-namespace {
-
-double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 void read_options(const ConfigReader& reader, FloorPlan* plan) {
   reader.read("resolution", &plan->resolution, positive());

@@ -24,20 +24,6 @@ DoorState read_door_state(const ConfigReader& reader, std::string_view key) {
   return state == "open" ? DoorState::kOpen : DoorState::kClosed;
 }
 
-std::string resolve(const ConfigReader& reader, const std::string& path) {
-  if (path.empty() || path.front() == '/') {
-    return path;
-  }
-  return reader.directory().empty() ? path : reader.directory() + "/" + path;
-}
-
-double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
 }  // namespace
 
 void read_options(const ConfigReader& reader, WorldOptions* o) {
@@ -45,8 +31,8 @@ void read_options(const ConfigReader& reader, WorldOptions* o) {
   reader.require("robot");
   reader.read("map", &o->map_path);
   reader.read("robot", &o->robot_path);
-  o->map_path = resolve(reader, o->map_path);
-  o->robot_path = resolve(reader, o->robot_path);
+  o->map_path = reader.resolve_path(o->map_path);
+  o->robot_path = reader.resolve_path(o->robot_path);
   o->start = read_pose(reader, "start", o->start);
   o->path.clear();
   for (const ConfigReader& step_reader : reader.list("path")) {
