@@ -35,8 +35,8 @@ struct LocalizerOptions {
   // SLAMER (Eqs. (7)-(9)).
   double dirichlet_a1 = 4.0;      // concentration of the true class
   double dirichlet_a2 = 1.0;      // of the others (a1 != a2, or the recognition model says nothing)
-  double prior_sigma = 0.3;       // [m] sigma_d of the map prior
-  double object_weight = 1.0;     // exponent on each object's term
+  double prior_sigma = 0.15;      // [m] sigma_d of the map prior
+  double object_weight = 5.0;     // exponent on each object's term (tuned on paper_indoor)
   int object_samples = 3;         // points along an object for its representative distance
   double min_probability = 1e-3;  // recognizer probabilities are floored before log
   // Recognition class -> the map class whose cells it lies on ("" = free space).
