@@ -81,6 +81,13 @@ std::vector<OutputEvent> outputs_of(const NodeOutput& output, int64_t scan_utime
   return events;
 }
 
+// Standard deviations (x, y, theta) from an INITIAL_POSE covariance, floored
+// so a zero covariance still spreads the particles a little.
+std::vector<double> initial_sigma(const initial_pose_t& m) {
+  return {std::sqrt(std::max(m.cov[0], 1e-6)), std::sqrt(std::max(m.cov[4], 1e-6)),
+          std::sqrt(std::max(m.cov[8], 1e-6))};
+}
+
 struct Setup {
   SemanticMap map;
   RobotOptions robot;
@@ -141,9 +148,7 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
         } else if (channel == ch.initial_pose) {
           initial_pose_t m{};
           if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
-            node.on_initial_pose({m.x, m.y, m.theta},
-                                 {std::sqrt(std::max(m.cov[0], 1e-6)), std::sqrt(std::max(m.cov[4], 1e-6)),
-                                  std::sqrt(std::max(m.cov[8], 1e-6))});
+            node.on_initial_pose({m.x, m.y, m.theta}, initial_sigma(m));
           }
         }
       },
@@ -207,8 +212,7 @@ int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
     publish_ready(std::numeric_limits<int64_t>::min() / 2);
   });
   process.subscribe<initial_pose_t>(ch.initial_pose, [&](const initial_pose_t& m, const ReceiveInfo&) {
-    node.on_initial_pose({m.x, m.y, m.theta}, {std::sqrt(std::max(m.cov[0], 1e-6)), std::sqrt(std::max(m.cov[4], 1e-6)),
-                                               std::sqrt(std::max(m.cov[8], 1e-6))});
+    node.on_initial_pose({m.x, m.y, m.theta}, initial_sigma(m));
     process.log_info("initial pose set");
   });
   // A scan whose objects do not come is processed without them after objects_wait.
@@ -233,10 +237,7 @@ int main(int argc, char** argv) {
         cli.add_option("out", "OUT.lcm", "offline: write the log with the results added here");
       },
       [](const slamer::CommandLine& cli) {
-        slamer::LocalizerProcessConfig config;
-        if (cli.has("config")) {
-          config = slamer::load_options<slamer::LocalizerProcessConfig>(cli.get("config"));
-        }
+        auto config = slamer::load_config<slamer::LocalizerProcessConfig>(cli);
         if (cli.has("mode")) {
           try {
             config.localizer.mode = slamer::parse_mode(cli.get("mode"));

@@ -139,10 +139,7 @@ int main(int argc, char** argv) {
         cli.add_option("out", "OUT.lcm", "offline: write the log with LINE_OBJECTS added here");
       },
       [](const slamer::CommandLine& cli) {
-        slamer::RecognizerProcessConfig config;
-        if (cli.has("config")) {
-          config = slamer::load_options<slamer::RecognizerProcessConfig>(cli.get("config"));
-        }
+        const auto config = slamer::load_config<slamer::RecognizerProcessConfig>(cli);
         if (cli.has("replay") != cli.has("out")) {
           throw slamer::CommandLineError("--replay and --out go together");
         }

@@ -153,6 +153,16 @@ bool LcmProcess::publish(const std::string& channel, const Msg& msg) {
   return publish_bytes(channel, bytes);
 }
 
+// The program's config from --config FILE, or its defaults without --config.
+template <class Config>
+Config load_config(const CommandLine& command_line) {
+  Config config;
+  if (command_line.has("config")) {
+    config = load_options<Config>(command_line.get("config"));
+  }
+  return config;
+}
+
 // Runs a program's body with the common command line (--config, --lcm-url,
 // --help) declared. `declare` adds program-specific options. Usage errors exit
 // 2, config and runtime errors exit 1, each with one line on stderr.

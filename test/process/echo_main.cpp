@@ -33,10 +33,7 @@ int main(int argc, char** argv) {
       argc, argv, "slamer-test-echo", "Republishes LIDAR, ODOMETRY, ... on <CHANNEL>_ECHO (process tests).",
       [](slamer::CommandLine&) {},
       [](const slamer::CommandLine& cli) {
-        Config config;
-        if (cli.has("config")) {
-          config = slamer::load_options<Config>(cli.get("config"));
-        }
+        const auto config = slamer::load_config<Config>(cli);
         slamer::LcmProcess process("slamer-test-echo", cli.get("lcm-url"), config.process);
         echo<slamer::laser_scan_t>(process, "LIDAR");
         echo<slamer::odometry_t>(process, "ODOMETRY");

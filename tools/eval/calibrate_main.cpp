@@ -64,10 +64,7 @@ int main(int argc, char** argv) {
         if (!cli.has("world")) {
           throw slamer::CommandLineError("--world FILE is required");
         }
-        slamer::RecognizerProcessConfig config;
-        if (cli.has("config")) {
-          config = slamer::load_options<slamer::RecognizerProcessConfig>(cli.get("config"));
-        }
+        const auto config = slamer::load_config<slamer::RecognizerProcessConfig>(cli);
         slamer::EvalConfig eval;
         if (cli.has("eval-config")) {
           eval = slamer::load_options<slamer::EvalConfig>(cli.get("eval-config"));

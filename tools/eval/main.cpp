@@ -127,10 +127,7 @@ int main(int argc, char** argv) {
         if (!cli.has("world")) {
           throw slamer::CommandLineError("--world FILE is required");
         }
-        slamer::EvalConfig config;
-        if (cli.has("config")) {
-          config = slamer::load_options<slamer::EvalConfig>(cli.get("config"));
-        }
+        const auto config = slamer::load_config<slamer::EvalConfig>(cli);
         const std::string world_file = cli.get("world");
         const auto world_options = slamer::load_options<slamer::WorldOptions>(world_file);
         const auto robot = slamer::load_options<slamer::RobotOptions>(world_options.robot_path);

@@ -1,5 +1,7 @@
 #include "tools/eval/report.hpp"
 
+#include "common/process/json.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -32,17 +34,6 @@ std::string json_number(double v) {
   out.precision(10);
   out << v;
   return out.str();
-}
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-    }
-    out += static_cast<unsigned char>(c) < 0x20 ? ' ' : c;
-  }
-  return out + "\"";
 }
 
 std::string accuracy_json(const AccuracyStats& s) {
@@ -124,7 +115,7 @@ std::string render_json(const std::vector<NamedRun>& runs, const EvalOptions& op
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunScores& s = runs[i].scores;
     const PoseErrorStats& p = s.pose;
-    out << (i == 0 ? "" : ", ") << "{\"name\": " << json_string(runs[i].name) << ", \"pose\": ";
+    out << (i == 0 ? "" : ", ") << "{\"name\": " << json_quote(runs[i].name) << ", \"pose\": ";
     if (p.samples == 0) {
       out << "null";
     } else {

@@ -120,10 +120,7 @@ int main(int argc, char** argv) {
         if (!cli.has("world")) {
           throw slamer::CommandLineError("--world FILE is required");
         }
-        slamer::SimProcessConfig config;
-        if (cli.has("config")) {
-          config = slamer::load_options<slamer::SimProcessConfig>(cli.get("config"));
-        }
+        auto config = slamer::load_config<slamer::SimProcessConfig>(cli);
         const int64_t seed = cli.get_int("seed");
         const double speed = cli.get_double("speed");
         if (seed < 0 || !(speed > 0.0)) {

@@ -34,10 +34,7 @@ int main(int argc, char** argv) {
         cli.add_flag("json", "print JSON instead of a table");
       },
       [](const slamer::CommandLine& cli) {
-        slamer::StatusProcessConfig config;
-        if (cli.has("config")) {
-          config = slamer::load_options<slamer::StatusProcessConfig>(cli.get("config"));
-        }
+        const auto config = slamer::load_config<slamer::StatusProcessConfig>(cli);
         const bool once = cli.has("once");
         const double once_s = once ? cli.get_double("once") : 0.0;
         if (once && once_s <= 0.0) {

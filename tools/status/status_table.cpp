@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "common/process/json.hpp"
 #include "slamer/channel_stats_t.hpp"
 
 namespace slamer {
@@ -33,23 +34,6 @@ const char* state_name(int8_t state) {
     default:
       return "invalid";
   }
-}
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 }  // namespace
@@ -90,17 +74,17 @@ std::string StatusTable::render_json(int64_t now_utime) const {
   bool first = true;
   for (const auto& [key, entry] : entries_) {
     const process_status_t& s = entry.status;
-    out << (first ? "" : ", ") << "{\"process\": " << json_string(s.process) << ", \"pid\": " << s.pid
-        << ", \"state\": " << json_string(is_stale(entry, now_utime) ? "gone" : state_name(s.state))
-        << ", \"message\": " << json_string(s.message) << ", \"uptime\": " << s.uptime
+    out << (first ? "" : ", ") << "{\"process\": " << json_quote(s.process) << ", \"pid\": " << s.pid
+        << ", \"state\": " << json_quote(is_stale(entry, now_utime) ? "gone" : state_name(s.state))
+        << ", \"message\": " << json_quote(s.message) << ", \"uptime\": " << s.uptime
         << ", \"messages_in\": " << s.messages_in << ", \"messages_out\": " << s.messages_out
         << ", \"decode_errors\": " << s.decode_errors << ", \"drops\": " << s.drops
         << ", \"processing_time_p50\": " << s.processing_time_p50
         << ", \"processing_time_p99\": " << s.processing_time_p99 << ", \"channels\": [";
     for (std::size_t i = 0; i < s.channels.size(); ++i) {
       const channel_stats_t& c = s.channels[i];
-      out << (i == 0 ? "" : ", ") << "{\"channel\": " << json_string(c.channel)
-          << ", \"direction\": " << json_string(c.direction == channel_stats_t::SUBSCRIBED ? "in" : "out")
+      out << (i == 0 ? "" : ", ") << "{\"channel\": " << json_quote(c.channel)
+          << ", \"direction\": " << json_quote(c.direction == channel_stats_t::SUBSCRIBED ? "in" : "out")
           << ", \"messages\": " << c.messages << ", \"decode_errors\": " << c.decode_errors
           << ", \"drops\": " << c.drops << "}";
     }
