@@ -39,6 +39,7 @@ class LocalizerNode {
   std::optional<NodeOutput> poll(int64_t now_utime, int64_t wait_us);
 
   const NodeCounters& counters() const { return counters_; }
+  std::size_t map_memory_bytes() const { return filter_.map_memory_bytes(); }
   bool needs_objects() const { return options_.mode != LocalizerMode::kLfm; }
 
  private:

@@ -40,6 +40,9 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   if (std::abs(o->lfm.z_hit + o->lfm.z_max + o->lfm.z_rand - 1.0) > 1e-6) {
     lfm.fail("z_rand", "z_hit + z_max + z_rand must be 1");
   }
+  if (!(o->lfm.z_rand > 0.0)) {
+    lfm.fail("z_rand", "must be > 0: a beam off the map would have probability 0");
+  }
   reader.read("beam_step", &o->beam_step, in_range(1, 10000));
   reader.read("beam_weight", &o->beam_weight, in_range(1e-6, 1.0));
   reader.read("slfm_lambda", &o->slfm_lambda, positive());

@@ -1,5 +1,6 @@
 // slamer-localizer: LIDAR + ODOMETRY + LINE_OBJECTS in; POSE, SEMANTIC_OBJECTS
 // and PARTICLES out. Live on LCM, or offline from a log (--replay IN --out OUT).
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -88,28 +89,33 @@ std::vector<double> initial_sigma(const initial_pose_t& m) {
           std::sqrt(std::max(m.cov[8], 1e-6))};
 }
 
-struct Setup {
-  SemanticMap map;
-  RobotOptions robot;
-};
-
-Setup load_setup(const LocalizerProcessConfig& config) {
+// The node with the map's fields built; the map itself is freed on return.
+LocalizerNode make_node(const LocalizerProcessConfig& config) {
   if (config.map.empty()) {
     throw ConfigError("no map: set 'map' in the config or pass --map");
   }
-  Setup setup{load_semantic_map(config.map), {}};
-  if (!config.robot.empty()) {
-    setup.robot = load_options<RobotOptions>(config.robot);
-  }
-  for (const std::string& warning : setup.map.warnings) {
+  const SemanticMap map = load_semantic_map(config.map);
+  for (const std::string& warning : map.warnings) {
     log_line("slamer-localizer", LogLevel::kWarning, warning);
   }
-  return setup;
+  const RobotOptions robot = config.robot.empty() ? RobotOptions{} : load_options<RobotOptions>(config.robot);
+  LocalizerNode node(map, config.localizer, robot.lidar.mount);
+  char line[200];
+  std::snprintf(line, sizeof line, "map %d x %d cells at %.3f m: distance fields %.1f MB", map.geometry.width,
+                map.geometry.height, map.geometry.resolution, static_cast<double>(node.map_memory_bytes()) / 1e6);
+  log_line("slamer-localizer", LogLevel::kInfo, line);
+  return node;
+}
+
+// Peak resident size of this process [MB], for the log.
+double peak_resident_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
 int run_replay(const LocalizerProcessConfig& config, const std::string& in, const std::string& out) {
-  const Setup setup = load_setup(config);
-  LocalizerNode node(setup.map, config.localizer, setup.robot.lidar.mount);
+  LocalizerNode node = make_node(config);
   int64_t last_particles = std::numeric_limits<int64_t>::min() / 2;
   int64_t scans = 0;
   const bool terminal = isatty(STDERR_FILENO) != 0;
@@ -164,14 +170,14 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
   log_line("slamer-localizer", LogLevel::kInfo,
            "replayed " + std::to_string(scans) + " scans of " + in + " into " + out + " (" +
                std::to_string(c.scans_without_objects) + " without objects, " + std::to_string(c.stale_scans) +
-               " stale, " + std::to_string(c.resets) + " resets, " + std::to_string(stats.handler_errors) + " errors)");
+               " stale, " + std::to_string(c.resets) + " resets, " + std::to_string(stats.handler_errors) +
+               " errors); peak resident " + std::to_string(static_cast<int>(peak_resident_mb())) + " MB");
   return 0;
 }
 
 int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
-  const Setup setup = load_setup(config);
+  LocalizerNode node = make_node(config);
   LcmProcess process("slamer-localizer", lcm_url, config.process);
-  LocalizerNode node(setup.map, config.localizer, setup.robot.lidar.mount);
   int64_t last_particles = std::numeric_limits<int64_t>::min() / 2;
   const LocalizerChannels& ch = config.channels;
   const auto wait_us = static_cast<int64_t>(config.objects_wait * 1e6);

@@ -32,30 +32,40 @@ namespace {
 constexpr int kFreeSpace = -1;
 constexpr int kNoField = -2;
 
+// How far the map's distance fields must reach: the LFM's likelihood field
+// and SLAMER's prior, which treats everything beyond 3 sigma_d as equally far.
+double field_reach(const LocalizerOptions& options) {
+  return std::max(likelihood_field_reach(options.lfm), 3.0 * options.prior_sigma);
+}
+
 }  // namespace
 
 ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount)
     : options_(options),
       mount_(lidar_mount),
       geometry_(map.geometry),
-      field_(obstacle_distance_field(map), options.lfm),
+      field_(std::make_shared<const DistanceField>(obstacle_distance_field(map, field_reach(options))), options.lfm),
+      free_distance_(free_space_distance_field(map, field_reach(options))),
       rng_(static_cast<std::mt19937::result_type>(options.seed)) {
   if (options.particles < 1) {
     throw std::invalid_argument("the filter needs at least one particle");
   }
-  const std::vector<DistanceField> distances = class_distance_fields(map);
+  std::vector<DistanceField> distances = class_distance_fields(map, field_reach(options));
   for (std::size_t c = 0; c < map.classes.size(); ++c) {
     map_classes_.push_back(map.classes[c].name);
-    class_distances_.push_back(distances[c]);
+    class_distances_.push_back(std::make_shared<const DistanceField>(std::move(distances[c])));
     if (options.mode == LocalizerMode::kSlfm) {
-      class_fields_.emplace_back(distances[c], options.lfm);
+      class_fields_.emplace_back(class_distances_.back(), options.lfm);
     }
   }
-  std::vector<uint8_t> free(map.geometry.size());
-  for (std::size_t i = 0; i < free.size(); ++i) {
-    free[i] = map.occupancy[i] == Occupancy::kFree && map.labels[i] < 0 ? 1 : 0;
+}
+
+std::size_t ParticleFilter::map_memory_bytes() const {
+  std::size_t bytes = field_.distances().memory_bytes() + free_distance_.memory_bytes();
+  for (const auto& field : class_distances_) {
+    bytes += field->memory_bytes();
   }
-  free_distance_ = DistanceField(map.geometry, free);
+  return bytes;
 }
 
 void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& sigma) {
@@ -195,14 +205,14 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   const double far = 3.0 * options_.prior_sigma;
   double total = 0.0;
   std::vector<double> terms;
-  std::vector<std::size_t> cells;  // sample cells on the map; off-map samples are left out
+  std::vector<Cell> cells;  // sample cells on the map; off-map samples are left out
   for (const PreparedObjects::Object& o : objects.objects) {
     cells.clear();
     for (const Eigen::Vector2d& p : o.samples) {
       const double gx = (c * p.x() - s * p.y() + grid.x) * to_cells;
       const double gy = (s * p.x() + c * p.y() + grid.y) * to_cells;
       if (gx >= 0.0 && gy >= 0.0 && gx < geometry_.width && gy < geometry_.height) {
-        cells.push_back(geometry_.index(static_cast<int>(gx), static_cast<int>(gy)));
+        cells.push_back({static_cast<int>(gx), static_cast<int>(gy)});
       }
     }
     const double off_map = far * static_cast<double>(o.samples.size() - cells.size());
@@ -212,10 +222,11 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
       double d = far;
       if (field != kNoField) {
         const DistanceField& distances =
-            field == kFreeSpace ? free_distance_ : class_distances_[static_cast<std::size_t>(field)];
+            field == kFreeSpace ? free_distance_ : *class_distances_[static_cast<std::size_t>(field)];
         double sum = off_map;
-        for (const std::size_t cell : cells) {
-          sum += std::min(static_cast<double>(distances.at_index(cell)), far);  // +inf (no such cells) becomes far
+        for (const Cell& cell : cells) {
+          // Fields saturate at or beyond `far` (also with no cell of the class at all).
+          sum += std::min(static_cast<double>(distances.at(cell.x, cell.y)), far);
         }
         d = sum / static_cast<double>(o.samples.size());
       }

@@ -58,6 +58,8 @@ class ParticleFilter {
   UpdateResult update(const LaserScan& scan, const LineObjectSet* objects);
 
   const std::vector<Particle>& particles() const { return particles_; }
+  // Bytes held by the map's distance fields.
+  std::size_t map_memory_bytes() const;
   PoseEstimate estimate() const;
 
   // The per-object SLAMER log term of a pose (sum over classes of recognition
@@ -82,9 +84,9 @@ class ParticleFilter {
   GridGeometry geometry_;
   LikelihoodField field_;
   std::vector<std::string> map_classes_;
-  std::vector<LikelihoodField> class_fields_;   // SLFM: per map class
-  std::vector<DistanceField> class_distances_;  // SLAMER prior: per map class
-  DistanceField free_distance_;                 // for recognition classes on free space
+  std::vector<std::shared_ptr<const DistanceField>> class_distances_;  // SLAMER prior: per map class
+  std::vector<LikelihoodField> class_fields_;                          // SLFM: per map class, sharing those
+  DistanceField free_distance_;                                        // for recognition classes on free space
   std::vector<Particle> particles_;
   std::mt19937 rng_;
   int low_likelihood_scans_ = 0;

@@ -267,37 +267,45 @@ int SemanticMap::class_index(std::string_view name) const {
   return -1;
 }
 
-std::vector<uint8_t> SemanticMap::occupied_mask() const {
-  std::vector<uint8_t> mask(occupancy.size());
-  for (std::size_t i = 0; i < occupancy.size(); ++i) {
-    mask[i] = occupancy[i] == Occupancy::kOccupied ? 1 : 0;
-  }
-  return mask;
-}
-
-std::vector<uint8_t> SemanticMap::class_mask(int class_index) const {
-  std::vector<uint8_t> mask(labels.size());
-  for (std::size_t i = 0; i < labels.size(); ++i) {
-    mask[i] = labels[i] == class_index ? 1 : 0;
-  }
-  return mask;
-}
-
 SemanticMap load_semantic_map(const std::string& yaml_path) {
   const ConfigReader reader = ConfigReader::from_file(yaml_path);
   return reader.has("ogm_info_yaml") ? load_ism(reader) : load_map_server(reader);
 }
 
-DistanceField obstacle_distance_field(const SemanticMap& map) {
-  return {map.geometry, map.occupied_mask()};
+namespace {
+
+// A distance field over the cells where `is_target(cell index)` holds, built
+// row by row so that no full-size mask is ever allocated.
+template <typename Predicate>
+DistanceField field_of(const SemanticMap& map, double max_distance, Predicate is_target) {
+  return {map.geometry,
+          [&](int y, uint8_t* row) {
+            const std::size_t first = map.geometry.index(0, y);
+            for (int x = 0; x < map.geometry.width; ++x) {
+              row[x] = is_target(first + static_cast<std::size_t>(x)) ? 1 : 0;
+            }
+          },
+          max_distance};
 }
 
-std::vector<DistanceField> class_distance_fields(const SemanticMap& map) {
+}  // namespace
+
+DistanceField obstacle_distance_field(const SemanticMap& map, double max_distance) {
+  return field_of(map, max_distance, [&](std::size_t i) { return map.occupancy[i] == Occupancy::kOccupied; });
+}
+
+std::vector<DistanceField> class_distance_fields(const SemanticMap& map, double max_distance) {
   std::vector<DistanceField> fields;
-  for (std::size_t i = 0; i < map.classes.size(); ++i) {
-    fields.emplace_back(map.geometry, map.class_mask(static_cast<int>(i)));
+  for (std::size_t c = 0; c < map.classes.size(); ++c) {
+    const auto label = static_cast<int8_t>(c);
+    fields.push_back(field_of(map, max_distance, [&](std::size_t i) { return map.labels[i] == label; }));
   }
   return fields;
+}
+
+DistanceField free_space_distance_field(const SemanticMap& map, double max_distance) {
+  return field_of(map, max_distance,
+                  [&](std::size_t i) { return map.occupancy[i] == Occupancy::kFree && map.labels[i] < 0; });
 }
 
 }  // namespace slamer

@@ -44,15 +44,15 @@ struct SemanticMap {
   std::vector<std::string> warnings;   // one line each, for the log
 
   int class_index(std::string_view name) const;  // -1 if absent
-  std::vector<uint8_t> occupied_mask() const;
-  std::vector<uint8_t> class_mask(int class_index) const;
 };
 
 SemanticMap load_semantic_map(const std::string& yaml_path);
 
-// Distance [m] to the nearest occupied cell, and to the nearest cell of each
-// class (index-aligned with map.classes).
-DistanceField obstacle_distance_field(const SemanticMap& map);
-std::vector<DistanceField> class_distance_fields(const SemanticMap& map);
+// Distance [m], up to max_distance, to the nearest occupied cell; to the
+// nearest cell of each class (index-aligned with map.classes); to the nearest
+// free cell of no class.
+DistanceField obstacle_distance_field(const SemanticMap& map, double max_distance);
+std::vector<DistanceField> class_distance_fields(const SemanticMap& map, double max_distance);
+DistanceField free_space_distance_field(const SemanticMap& map, double max_distance);
 
 }  // namespace slamer

@@ -59,29 +59,40 @@ TEST(GridGeometry, CellsWithRotatedOrigin) {
   EXPECT_NEAR(center.y(), 2.0 + 1.75, 1e-12);
 }
 
-TEST(DistanceField, MatchesBruteForceExactly) {
+TEST(DistanceField, MatchesBruteForceWithinHalfALevel) {
   std::mt19937 rng(11);
-  for (const auto& [w, h, density] : std::vector<std::tuple<int, int, double>>{
-           {1, 1, 1.0}, {1, 37, 0.1}, {53, 1, 0.05}, {40, 31, 0.02}, {64, 64, 0.001}, {97, 45, 0.3}}) {
-    GridGeometry g{w, h, 0.05, {}};
-    std::vector<uint8_t> target(g.size());
-    std::bernoulli_distribution pick(density);
-    for (uint8_t& t : target) {
-      t = pick(rng) ? 1 : 0;
-    }
-    target[static_cast<std::size_t>(rng() % g.size())] = 1;
-    const DistanceField field(g, target);
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        double best = std::numeric_limits<double>::infinity();
-        for (int ty = 0; ty < h; ++ty) {
-          for (int tx = 0; tx < w; ++tx) {
-            if (target[g.index(tx, ty)] != 0) {
-              best = std::min(best, std::hypot(tx - x, ty - y) * 0.05);
+  // Grids taller than a band (32 rows) and reaches shorter than the grid check the bands' margins.
+  for (const auto& [w, h, density] : std::vector<std::tuple<int, int, double>>{{1, 1, 1.0},
+                                                                               {1, 37, 0.1},
+                                                                               {53, 1, 0.05},
+                                                                               {40, 31, 0.02},
+                                                                               {64, 64, 0.001},
+                                                                               {97, 45, 0.3},
+                                                                               {70, 150, 0.003},
+                                                                               {33, 100, 0.01}}) {
+    for (const double max_distance : {0.3, 2.0, 12.0}) {
+      GridGeometry g{w, h, 0.05, {}};
+      std::vector<uint8_t> target(g.size());
+      std::bernoulli_distribution pick(density);
+      for (uint8_t& t : target) {
+        t = pick(rng) ? 1 : 0;
+      }
+      target[static_cast<std::size_t>(rng() % g.size())] = 1;
+      const DistanceField field(g, target, max_distance);
+      ASSERT_TRUE(field.has_targets());
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          double best = std::numeric_limits<double>::infinity();
+          for (int ty = 0; ty < h; ++ty) {
+            for (int tx = 0; tx < w; ++tx) {
+              if (target[g.index(tx, ty)] != 0) {
+                best = std::min(best, std::hypot(tx - x, ty - y) * 0.05);
+              }
             }
           }
+          ASSERT_NEAR(field.at(x, y), std::min(best, max_distance), field.step() / 2 + 1e-6)
+              << w << "x" << h << " reach " << max_distance << " at " << x << "," << y;
         }
-        ASSERT_NEAR(field.at(x, y), best, 1e-5) << w << "x" << h << " at " << x << "," << y;
       }
     }
   }
@@ -91,23 +102,57 @@ TEST(DistanceField, DiagonalIsEuclideanNotChamfer) {
   GridGeometry g{200, 200, 0.1, {}};
   std::vector<uint8_t> target(g.size(), 0);
   target[g.index(0, 0)] = 1;
-  const DistanceField field(g, target);
-  EXPECT_NEAR(field.at(150, 80), std::hypot(150.0, 80.0) * 0.1, 1e-4);
-  EXPECT_NEAR(field.at(199, 199), std::hypot(199.0, 199.0) * 0.1, 1e-4);
+  const DistanceField field(g, target, 30.0);
+  EXPECT_NEAR(field.at(150, 80), std::hypot(150.0, 80.0) * 0.1, field.step() / 2);
+  EXPECT_NEAR(field.at(60, 199), std::hypot(60.0, 199.0) * 0.1, field.step() / 2);
+  EXPECT_NEAR(field.at(199, 199), std::hypot(199.0, 199.0) * 0.1, field.step() / 2);
+  const DistanceField short_reach(g, target, 10.0);
+  EXPECT_EQ(short_reach.level(199, 199), DistanceField::kSaturated);
+  EXPECT_FLOAT_EQ(short_reach.at(199, 199), 10.0f);
 }
 
-TEST(DistanceField, NoTargetIsInfiniteAndOffMapIsExplicit) {
+TEST(DistanceField, NoTargetIsSaturatedAndOffMapIsExplicit) {
   GridGeometry g{5, 5, 1.0, {}};
-  const DistanceField field(g, std::vector<uint8_t>(g.size(), 0));
+  const DistanceField field(g, std::vector<uint8_t>(g.size(), 0), 3.0);
   EXPECT_FALSE(field.has_targets());
-  EXPECT_TRUE(std::isinf(field.at(2, 2)));
+  EXPECT_FLOAT_EQ(field.at(2, 2), 3.0f);
   EXPECT_FALSE(field.at_world({-0.5, 1.0}).has_value());
   EXPECT_TRUE(field.at_world({0.5, 1.0}).has_value());
 }
 
+TEST(DistanceField, TilesFarFromTargetsShareOneBlock) {
+  // 256 x 256 cells = 64 tiles; one target in a corner reaches 1 m = 20 cells: only its own tile varies.
+  GridGeometry g{256, 256, 0.05, {}};
+  std::vector<uint8_t> target(g.size(), 0);
+  target[g.index(3, 4)] = 1;
+  const DistanceField field(g, target, 1.0);
+  EXPECT_EQ(field.distinct_tiles(), 1u);
+  EXPECT_LT(field.memory_bytes(), g.size() / 4);
+  EXPECT_EQ(field.level(200, 200), DistanceField::kSaturated);
+  EXPECT_NEAR(field.at(3, 20), 16 * 0.05, field.step() / 2);
+  // A checkerboard of targets: every tile varies, and it still costs about a byte a cell.
+  for (int y = 0; y < g.height; ++y) {
+    for (int x = 0; x < g.width; ++x) {
+      target[g.index(x, y)] = ((x / 8 + y / 8) % 2 == 0 && x % 8 == 0) ? 1 : 0;
+    }
+  }
+  const DistanceField dense(g, target, 1.0);
+  EXPECT_EQ(dense.distinct_tiles(), 64u);
+  EXPECT_LT(dense.memory_bytes(), g.size() * 2);
+}
+
+TEST(DistanceField, RejectsBadArguments) {
+  GridGeometry g{4, 4, 0.05, {}};
+  EXPECT_THROW(DistanceField(g, std::vector<uint8_t>(15, 0), 1.0), std::invalid_argument);
+  EXPECT_THROW(DistanceField(g, std::vector<uint8_t>(16, 0), 0.0), std::invalid_argument);
+  EXPECT_THROW(DistanceField(g, std::vector<uint8_t>(16, 0), std::numeric_limits<double>::infinity()),
+               std::invalid_argument);
+}
+
 TEST(LikelihoodField, HandComputedValues) {
   GridGeometry g{3, 1, 1.0, {}};
-  const DistanceField obstacles(g, {1, 0, 0});
+  // 5.1 m in 255 levels: 0.02 m a level, so 1 m and 2 m are exact levels.
+  const auto obstacles = std::make_shared<const DistanceField>(g, std::vector<uint8_t>{1, 0, 0}, 5.1);
   LikelihoodFieldOptions options;
   options.sigma_hit = 0.5;
   options.z_hit = 0.8;
@@ -121,6 +166,12 @@ TEST(LikelihoodField, HandComputedValues) {
   EXPECT_NEAR(field.off_map_log_likelihood(), std::log(0.1 / 20.0), 1e-6);
   EXPECT_NEAR(field.max_range_log_likelihood(), std::log(0.1 + 0.1 / 20.0), 1e-6);
   EXPECT_NEAR(field.log_likelihood_at({-3.0, 0.5}), field.off_map_log_likelihood(), 1e-9);
+  // Reach: the hit term falls to 1e-4 of the random term, sigma * sqrt(2 ln(norm / (1e-4 * random))).
+  const double reach = 0.5 * std::sqrt(2.0 * std::log(norm / (1e-4 * 0.1 / 20.0)));
+  EXPECT_NEAR(likelihood_field_reach(options), reach, 1e-9);
+  EXPECT_NEAR(reach, 2.65, 0.01);
+  const auto short_reach = std::make_shared<const DistanceField>(g, std::vector<uint8_t>{1, 0, 0}, 2.0);
+  EXPECT_THROW(LikelihoodField(short_reach, options), std::invalid_argument);
   options.z_rand = 0.3;  // weights sum to 1.2
   EXPECT_THROW(LikelihoodField(obstacles, options), std::invalid_argument);
 }
@@ -164,10 +215,10 @@ TEST(SemanticMap, MapServerOccupancyWithThresholdsNegateAndYaw) {
   EXPECT_EQ(negated.occupancy[negated.geometry.index(0, 2)], Occupancy::kFree);
   EXPECT_EQ(negated.occupancy[negated.geometry.index(1, 2)], Occupancy::kOccupied);
 
-  const DistanceField obstacles = obstacle_distance_field(map);
-  EXPECT_NEAR(obstacles.at(1, 0), 0.0, 1e-6);  // bottom image row: 0, 0, 254, 160
+  const DistanceField obstacles = obstacle_distance_field(map, 2.55);  // 0.01 m a level
+  EXPECT_NEAR(obstacles.at(1, 0), 0.0, 1e-6);                          // bottom image row: 0, 0, 254, 160
   EXPECT_NEAR(obstacles.at(2, 0), 0.1, 1e-6);
-  EXPECT_NEAR(obstacles.at(3, 1), std::hypot(2.0, 1.0) * 0.1, 1e-6);
+  EXPECT_NEAR(obstacles.at(3, 1), std::hypot(2.0, 1.0) * 0.1, 0.005);
 }
 
 void write_semantic_png(const std::string& path) {
@@ -202,9 +253,12 @@ TEST(SemanticMap, SemanticLayerWithClassTable) {
   EXPECT_NE(map.warnings[0].find("2 semantic pixels in 1 colour(s) of no class (most: [30, 20, 10] x 2)"),
             std::string::npos)
       << map.warnings[0];
-  const std::vector<DistanceField> fields = class_distance_fields(map);
+  const std::vector<DistanceField> fields = class_distance_fields(map, 2.55);
   ASSERT_EQ(fields.size(), 3u);
-  EXPECT_NEAR(fields[static_cast<std::size_t>(map.class_index("door"))].at(3, 0), std::hypot(3.0, 2.0) * 0.1, 1e-6);
+  EXPECT_NEAR(fields[static_cast<std::size_t>(map.class_index("door"))].at(3, 0), std::hypot(3.0, 2.0) * 0.1, 0.005);
+  const DistanceField free = free_space_distance_field(map, 2.55);
+  EXPECT_NEAR(free.at(1, 1), 0.0, 1e-6);  // free, no class
+  EXPECT_NEAR(free.at(0, 2), 0.1, 1e-6);  // the door, next to free (1, 2)
 }
 
 TEST(SemanticMap, IsmYamlFormat) {
