@@ -19,7 +19,9 @@ void read_options(const ConfigReader& reader, LocalizerProcessConfig* config) {
   config->robot = reader.resolve_path(config->robot);
   reader.read("particles_out", &config->particles_out, in_range(0, 100000));
   reader.read("particles_period", &config->particles_period, positive());
-  reader.read("objects_wait", &config->objects_wait, in_range(0.0, 5.0));
+  reader.read("pose_file", &config->pose_file);
+  config->pose_file = reader.resolve_path(config->pose_file);
+  reader.read("pose_save_period", &config->pose_save_period, in_range(0.1, 3600.0));
 }
 
 }  // namespace slamer

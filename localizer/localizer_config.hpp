@@ -24,7 +24,10 @@ struct LocalizerProcessConfig {
   std::string robot;              // robot YAML (for the LiDAR mount), resolved against the config file
   int particles_out = 200;        // particles sent on PARTICLES (evenly picked)
   double particles_period = 0.2;  // [s] at most one PARTICLES per period
-  double objects_wait = 0.1;      // [s] live: how long a scan waits for its LINE_OBJECTS
+  // Live: the last good pose is written here (atomically) every pose_save_period and at a
+  // clean stop, and a restart resumes from it. Empty: not kept.
+  std::string pose_file;
+  double pose_save_period = 1.0;  // [s]
 };
 void read_options(const ConfigReader& reader, LocalizerProcessConfig* config);
 

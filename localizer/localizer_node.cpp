@@ -1,12 +1,16 @@
 #include "localizer/localizer_node.hpp"
 
+#include <algorithm>
 #include <limits>
 
 namespace slamer {
 namespace {
 
-constexpr int64_t kBackwardsReset = 1'000'000;  // [us] a jump back this large is a new run, not jitter
-constexpr std::size_t kOdometryKept = 2000;     // 20 s at 100 Hz
+constexpr std::size_t kOdometryKept = 2000;  // 20 s at 100 Hz
+constexpr std::size_t kMaxWaiting = 16;      // scans held for their objects (0.4 s at 40 Hz)
+
+double seconds(int64_t microseconds) { return static_cast<double>(microseconds) * 1e-6; }
+int64_t microseconds(double s) { return static_cast<int64_t>(s * 1e6); }
 
 }  // namespace
 
@@ -20,22 +24,29 @@ LocalizerNode::LocalizerNode(const SemanticMap& map, const LocalizerOptions& opt
 
 void LocalizerNode::reset() {
   ++counters_.resets;
+  scan_order_.reset();
+  odometry_order_.reset();
   odometry_.clear();
   last_odometry_used_.reset();
-  last_scan_utime_ = -1;
-  waiting_.reset();
-  waiting_objects_.reset();
+  last_processed_utime_.reset();
+  last_objects_utime_.reset();
+  first_scan_utime_.reset();
+  pending_.clear();
+  health_ = {};
   filter_.initialize(start_pose_, start_sigma_);
 }
 
 void LocalizerNode::on_odometry(int64_t utime, const Pose2& pose) {
-  if (!odometry_.empty() && utime <= odometry_.back().first) {
-    if (odometry_.back().first - utime > kBackwardsReset) {
-      reset();
-    } else {
+  switch (odometry_order_.check(utime)) {
+    case Arrival::kStale:
       ++counters_.stale_odometry;
       return;
-    }
+    case Arrival::kRestart:
+      reset();
+      odometry_order_.check(utime);
+      break;
+    case Arrival::kInOrder:
+      break;
   }
   odometry_.emplace_back(utime, pose);
   while (odometry_.size() > kOdometryKept) {
@@ -51,23 +62,61 @@ void LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>
 }
 
 void LocalizerNode::on_scan(const LaserScan& scan) {
-  if (last_scan_utime_ >= 0 && scan.utime <= last_scan_utime_) {
-    if (last_scan_utime_ - scan.utime > kBackwardsReset) {
-      reset();
-    } else {
+  switch (scan_order_.check(scan.utime)) {
+    case Arrival::kStale:
       ++counters_.stale_scans;
       return;
-    }
+    case Arrival::kRestart:
+      reset();
+      scan_order_.check(scan.utime);
+      break;
+    case Arrival::kInOrder:
+      break;
   }
-  waiting_ = scan;
-  waiting_since_ = scan.utime;
-  if (waiting_objects_ && waiting_objects_->utime != scan.utime) {
-    waiting_objects_.reset();
+  if (!first_scan_utime_) {
+    first_scan_utime_ = scan.utime;
   }
+  pending_.push_back({scan, std::nullopt});
 }
 
 void LocalizerNode::on_objects(const LineObjectSet& objects) {
-  waiting_objects_ = objects;  // matched to its scan by utime in poll()
+  if (!last_objects_utime_ || objects.utime > *last_objects_utime_) {
+    last_objects_utime_ = objects.utime;
+  }
+  const auto waiting = std::find_if(pending_.begin(), pending_.end(),
+                                    [&](const Pending& p) { return p.scan.utime == objects.utime; });
+  if (waiting == pending_.end() || waiting->objects) {
+    ++counters_.stale_objects;  // its scan is gone (processed, dropped) or it came twice
+    return;
+  }
+  waiting->objects = objects;
+}
+
+bool LocalizerNode::objects_missing(int64_t scan_utime) const {
+  if (!needs_objects()) {
+    return false;
+  }
+  const std::optional<int64_t>& since = last_objects_utime_ ? last_objects_utime_ : first_scan_utime_;
+  return since && scan_utime - *since > microseconds(options_.objects_timeout);
+}
+
+std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
+  if (pending_.empty()) {
+    return std::nullopt;
+  }
+  const Pending& oldest = pending_.front();
+  const bool release =
+      !needs_objects() || oldest.objects || now_utime == std::numeric_limits<int64_t>::max() ||
+      now_utime - oldest.scan.utime >= microseconds(options_.objects_wait) || pending_.size() > kMaxWaiting ||
+      objects_missing(pending_.back().scan.utime) ||
+      // The recognizer works in order: a later scan's objects mean these will not come.
+      std::any_of(pending_.begin() + 1, pending_.end(), [](const Pending& p) { return p.objects.has_value(); });
+  if (!release) {
+    return std::nullopt;
+  }
+  const Pending next = std::move(pending_.front());
+  pending_.pop_front();
+  return process(next);
 }
 
 std::optional<Pose2> LocalizerNode::odometry_at(int64_t utime) const {
@@ -87,40 +136,33 @@ std::optional<Pose2> LocalizerNode::odometry_at(int64_t utime) const {
   return odometry_.front().second;
 }
 
-std::optional<NodeOutput> LocalizerNode::poll(int64_t now_utime, int64_t wait_us) {
-  if (!waiting_) {
-    return std::nullopt;
-  }
-  const bool have_objects = waiting_objects_ && waiting_objects_->utime == waiting_->utime;
-  const bool waited = now_utime == std::numeric_limits<int64_t>::max() || now_utime - waiting_since_ >= wait_us;
-  if (needs_objects() && !have_objects && !waited) {
-    return std::nullopt;
-  }
-  if (needs_objects() && !have_objects) {
+UpdateResult LocalizerNode::process(const Pending& pending) {
+  const int64_t utime = pending.scan.utime;
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  health_.odometry_age = odometry_.empty() ? kNever : std::max(0.0, seconds(utime - odometry_.back().first));
+  health_.odometry_missing = health_.odometry_age > options_.odometry_timeout;
+  health_.objects_age = last_objects_utime_ ? std::max(0.0, seconds(utime - *last_objects_utime_)) : kNever;
+  health_.objects_missing = objects_missing(utime);
+  if (needs_objects() && !pending.objects) {
     ++counters_.scans_without_objects;
   }
-  const LaserScan scan = std::move(*waiting_);
-  waiting_.reset();
-  const std::optional<LineObjectSet> objects = have_objects ? waiting_objects_ : std::nullopt;
-  waiting_objects_.reset();
-  return process(scan, objects ? &*objects : nullptr);
-}
-
-NodeOutput LocalizerNode::process(const LaserScan& scan, const LineObjectSet* objects) {
-  const std::optional<Pose2> odometry = odometry_at(scan.utime);
-  if (!odometry) {
+  if (health_.odometry_missing) {
+    // Without odometry the robot may have moved anywhere its speed allows; when
+    // odometry comes back its increment starts from there, not from before the gap.
     ++counters_.scans_without_odometry;
+    if (last_processed_utime_) {
+      filter_.diffuse(seconds(utime - *last_processed_utime_));
+    }
+    last_odometry_used_.reset();
   } else {
+    const std::optional<Pose2> odometry = odometry_at(utime);
     if (last_odometry_used_) {
       filter_.predict(*last_odometry_used_, *odometry);
     }
     last_odometry_used_ = odometry;
   }
-  last_scan_utime_ = scan.utime;
-  NodeOutput output;
-  output.result = filter_.update(scan, objects);
-  output.particles = filter_.particles();
-  return output;
+  last_processed_utime_ = utime;
+  return filter_.update(pending.scan, pending.objects ? &*pending.objects : nullptr);
 }
 
 }  // namespace slamer

@@ -1,28 +1,38 @@
-// What a running localizer does around the filter: keeps odometry to
-// interpolate it to each scan's time, pairs each scan with its recognized
-// objects (waiting a little for them), drops stale or out-of-order input,
-// and starts over when time jumps backwards (a log replayed from the top).
+// What a running localizer does around the filter:
+//  * keeps odometry to interpolate it to each scan's time;
+//  * pairs each scan with its recognized objects, holding scans (in order) up
+//    to `objects_wait` for them; a scan is released without objects when a
+//    later scan's objects came first, or the recognizer is missing;
+//  * drops stale (duplicate, out-of-order) input and starts over when time
+//    jumps backwards (a log replayed from the top), by one rule (StreamOrder);
+//  * degrades when a stream is missing: without odometry the particles
+//    diffuse at up to `no_odometry_speed`; without objects, geometry only.
 // No clock and no LCM: times come with the inputs; `now` is passed in.
 #pragma once
 
 #include <deque>
 #include <optional>
 
+#include "common/process/stream_order.hpp"
 #include "localizer/particle_filter.hpp"
 
 namespace slamer {
 
 struct NodeCounters {
-  int64_t stale_scans = 0;  // older than the last processed one
+  int64_t stale_scans = 0;  // not newer than the last scan
   int64_t stale_odometry = 0;
+  int64_t stale_objects = 0;  // for no scan still waiting
   int64_t scans_without_objects = 0;
   int64_t scans_without_odometry = 0;
   int64_t resets = 0;  // time went backwards
 };
 
-struct NodeOutput {
-  UpdateResult result;
-  std::vector<Particle> particles;
+// Which inputs the last processed scan had to do without.
+struct InputHealth {
+  bool odometry_missing = false;
+  bool objects_missing = false;  // only when the mode uses objects
+  double odometry_age = 0.0;     // [s] of the newest odometry at the last scan (inf: none yet)
+  double objects_age = 0.0;      // [s] of the newest objects at the last scan (inf: none yet)
 };
 
 class LocalizerNode {
@@ -33,30 +43,41 @@ class LocalizerNode {
   void on_initial_pose(const Pose2& pose, const std::vector<double>& sigma);
   void on_scan(const LaserScan& scan);
   void on_objects(const LineObjectSet& objects);
-  // Processes the waiting scan if its objects are in, or if `wait_us` has
-  // passed since the scan's utime (host time of its measurement) by
-  // `now_utime`; INT64_MAX flushes it, a very small value never waits it out.
-  std::optional<NodeOutput> poll(int64_t now_utime, int64_t wait_us);
+  // Processes the oldest waiting scan if it may go (see above) by `now_utime`
+  // (host time, like the scans' utime); INT64_MAX flushes every waiting scan.
+  // Call until it returns nothing.
+  std::optional<UpdateResult> poll(int64_t now_utime);
 
+  const std::vector<Particle>& particles() const { return filter_.particles(); }
   const NodeCounters& counters() const { return counters_; }
+  const InputHealth& health() const { return health_; }
+  std::size_t waiting_scans() const { return pending_.size(); }
   std::size_t map_memory_bytes() const { return filter_.map_memory_bytes(); }
   bool needs_objects() const { return options_.mode != LocalizerMode::kLfm; }
 
  private:
-  NodeOutput process(const LaserScan& scan, const LineObjectSet* objects);
+  struct Pending {
+    LaserScan scan;
+    std::optional<LineObjectSet> objects;
+  };
+  UpdateResult process(const Pending& pending);
   std::optional<Pose2> odometry_at(int64_t utime) const;
+  bool objects_missing(int64_t scan_utime) const;
   void reset();
 
   LocalizerOptions options_;
   ParticleFilter filter_;
   Pose2 start_pose_;
   std::vector<double> start_sigma_;
+  StreamOrder scan_order_;
+  StreamOrder odometry_order_;
   std::deque<std::pair<int64_t, Pose2>> odometry_;
   std::optional<Pose2> last_odometry_used_;
-  int64_t last_scan_utime_ = -1;
-  std::optional<LaserScan> waiting_;
-  int64_t waiting_since_ = 0;
-  std::optional<LineObjectSet> waiting_objects_;
+  std::optional<int64_t> last_processed_utime_;
+  std::optional<int64_t> last_objects_utime_;
+  std::optional<int64_t> first_scan_utime_;
+  std::deque<Pending> pending_;
+  InputHealth health_;
   NodeCounters counters_;
 };
 

@@ -55,6 +55,12 @@ struct LocalizerOptions {
   double uncertain_position_sigma = 0.5;             // [m]
   double lost_mean_log_likelihood = -3.0;            // per used beam; below for `lost_after` scans: LOST
   int lost_after = 20;
+  // Input streams (LocalizerNode).
+  double objects_wait = 0.1;           // [s] how long a scan waits for its LINE_OBJECTS
+  double objects_timeout = 1.0;        // [s] none for this long: the recognizer is missing, scans stop waiting
+  double odometry_timeout = 0.5;       // [s] no odometry this close before a scan: odometry is missing
+  double no_odometry_speed = 0.5;      // [m/s] without odometry the particles diffuse this fast
+  double no_odometry_turn_rate = 0.5;  // [rad/s]
 };
 void read_options(const ConfigReader& reader, LocalizerOptions* options);
 LocalizerMode parse_mode(const std::string& text);  // throws std::invalid_argument

@@ -4,10 +4,13 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <limits>
 
 #include "common/map/semantic_map.hpp"
+#include "common/process/atomic_file.hpp"
 #include "common/process/convert.hpp"
 #include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
@@ -15,6 +18,7 @@
 #include "common/robot/robot_options.hpp"
 #include "localizer/localizer_config.hpp"
 #include "localizer/localizer_node.hpp"
+#include "localizer/saved_pose.hpp"
 #include "slamer/initial_pose_t.hpp"
 #include "slamer/odometry_t.hpp"
 #include "slamer/particles_t.hpp"
@@ -65,28 +69,18 @@ particles_t to_particles_message(const std::vector<Particle>& particles, int64_t
 }
 
 // The outputs of one processed scan, as encoded events.
-std::vector<OutputEvent> outputs_of(const NodeOutput& output, int64_t scan_utime, const LocalizerProcessConfig& config,
-                                    int64_t* last_particles_utime) {
+std::vector<OutputEvent> outputs_of(const UpdateResult& result, const std::vector<Particle>& particles,
+                                    const LocalizerProcessConfig& config, int64_t* last_particles_utime) {
+  const int64_t utime = result.semantic.utime;
   std::vector<OutputEvent> events;
-  events.push_back(
-      encode_event(config.channels.pose, to_pose_message(output.result, scan_utime, config.localizer.particles)));
-  LineObjectSet semantic = output.result.semantic;
-  semantic.utime = scan_utime;
-  events.push_back(encode_event(config.channels.semantic_objects, to_semantic_objects_message(semantic)));
-  if (config.particles_out > 0 &&
-      scan_utime - *last_particles_utime >= static_cast<int64_t>(config.particles_period * 1e6)) {
-    events.push_back(encode_event(config.channels.particles,
-                                  to_particles_message(output.particles, scan_utime, config.particles_out)));
-    *last_particles_utime = scan_utime;
+  events.push_back(encode_event(config.channels.pose, to_pose_message(result, utime, config.localizer.particles)));
+  events.push_back(encode_event(config.channels.semantic_objects, to_semantic_objects_message(result.semantic)));
+  if (config.particles_out > 0 && utime - *last_particles_utime >= static_cast<int64_t>(config.particles_period * 1e6)) {
+    events.push_back(
+        encode_event(config.channels.particles, to_particles_message(particles, utime, config.particles_out)));
+    *last_particles_utime = utime;
   }
   return events;
-}
-
-// Standard deviations (x, y, theta) from an INITIAL_POSE covariance, floored
-// so a zero covariance still spreads the particles a little.
-std::vector<double> initial_sigma(const initial_pose_t& m) {
-  return {std::sqrt(std::max(m.cov[0], 1e-6)), std::sqrt(std::max(m.cov[4], 1e-6)),
-          std::sqrt(std::max(m.cov[8], 1e-6))};
 }
 
 // The node with the map's fields built; the map itself is freed on return.
@@ -120,16 +114,19 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
   int64_t scans = 0;
   const bool terminal = isatty(STDERR_FILENO) != 0;
   const LocalizerChannels& ch = config.channels;
-  const auto flush = [&](std::vector<OutputEvent>* outputs, int64_t now) {
-    while (std::optional<NodeOutput> result = node.poll(now, 0)) {
-      const auto events = outputs_of(*result, result->result.semantic.utime, config, &last_particles);
+  // The log's timestamps (receive times) are the clock: a scan waits for its
+  // objects as it did live, so a recorded run replays the way it ran.
+  const auto publish_ready = [&](std::vector<OutputEvent>* outputs, int64_t now) {
+    while (const std::optional<UpdateResult> result = node.poll(now)) {
+      const auto events = outputs_of(*result, node.particles(), config, &last_particles);
       outputs->insert(outputs->end(), events.begin(), events.end());
       ++scans;
     }
   };
   const ReplayStats stats = replay_log(
       in, out, {ch.lidar, ch.odometry, ch.line_objects, ch.initial_pose}, {ch.pose, ch.semantic_objects, ch.particles},
-      [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t, std::vector<OutputEvent>* outputs) {
+      [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t timestamp,
+          std::vector<OutputEvent>* outputs) {
         if (channel == ch.odometry) {
           odometry_t m{};
           if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
@@ -138,92 +135,164 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
         } else if (channel == ch.lidar) {
           laser_scan_t m{};
           if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
-            // The previous scan's objects will not come any more: process it as it is.
-            flush(outputs, std::numeric_limits<int64_t>::max());
             node.on_scan(from_message(m));
-            if (!node.needs_objects()) {
-              flush(outputs, std::numeric_limits<int64_t>::max());
-            }
           }
         } else if (channel == ch.line_objects) {
           line_objects_t m{};
           if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
             node.on_objects(from_message(m));
-            flush(outputs, std::numeric_limits<int64_t>::min() / 2);  // only if the objects matched
           }
         } else if (channel == ch.initial_pose) {
           initial_pose_t m{};
           if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
-            node.on_initial_pose({m.x, m.y, m.theta}, initial_sigma(m));
+            node.on_initial_pose({m.x, m.y, m.theta}, sigma_of_covariance(m.cov));
           }
         }
+        publish_ready(outputs, timestamp);
       },
       [&](double fraction) {
         if (terminal) {
           std::fprintf(stderr, "\rslamer-localizer: %3.0f%%", 100.0 * fraction);
         }
-      });
+      },
+      [&](std::vector<OutputEvent>* outputs) { publish_ready(outputs, std::numeric_limits<int64_t>::max()); });
   if (terminal) {
     std::fprintf(stderr, "\n");
   }
   const NodeCounters& c = node.counters();
   log_line("slamer-localizer", LogLevel::kInfo,
            "replayed " + std::to_string(scans) + " scans of " + in + " into " + out + " (" +
-               std::to_string(c.scans_without_objects) + " without objects, " + std::to_string(c.stale_scans) +
+               std::to_string(c.scans_without_objects) + " without objects, " +
+               std::to_string(c.scans_without_odometry) + " without odometry, " + std::to_string(c.stale_scans) +
                " stale, " + std::to_string(c.resets) + " resets, " + std::to_string(stats.handler_errors) +
                " errors); peak resident " + std::to_string(static_cast<int>(peak_resident_mb())) + " MB");
   return 0;
 }
 
+// What PROCESS_STATUS says: the filter's state and the inputs it goes without.
+std::pair<int8_t, std::string> process_state(LocalizerStatus status, const InputHealth& health,
+                                             const LocalizerChannels& channels) {
+  std::string message;
+  const auto add = [&](const std::string& part) { message += (message.empty() ? "" : "; ") + part; };
+  const auto missing = [&](const std::string& channel, double age, const std::string& consequence) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f s", age);
+    add("no " + channel + (std::isfinite(age) ? " for " + std::string(text) : " yet") + ": " + consequence);
+  };
+  if (status == LocalizerStatus::kLost) {
+    add("lost: the scans do not fit the map");
+  } else if (status == LocalizerStatus::kUncertain) {
+    add("uncertain");
+  }
+  if (health.odometry_missing) {
+    missing(channels.odometry, health.odometry_age, "following the scans alone");
+  }
+  if (health.objects_missing) {
+    missing(channels.line_objects, health.objects_age, "geometry only");
+  }
+  if (status == LocalizerStatus::kLost) {
+    return {process_status_t::ERROR, message};
+  }
+  return {message.empty() ? process_status_t::OK : process_status_t::DEGRADED, message};
+}
+
+// Where the live localizer starts: the saved pose if there is a good one, else the config's.
+void resume_from_saved_pose(const LocalizerProcessConfig& config, LocalizerNode* node) {
+  if (config.pose_file.empty()) {
+    return;
+  }
+  if (!std::filesystem::exists(config.pose_file)) {
+    log_line("slamer-localizer", LogLevel::kInfo,
+             "no saved pose in " + config.pose_file + " yet: starting from the configured initial pose");
+    return;
+  }
+  try {
+    const auto saved = load_options<SavedPose>(config.pose_file);
+    node->on_initial_pose(saved.pose, saved.sigma);
+    char line[160];
+    std::snprintf(line, sizeof line, "resuming from the pose saved in %s: (%.3f, %.3f, %.3f)",
+                  config.pose_file.c_str(), saved.pose.x, saved.pose.y, saved.pose.theta);
+    log_line("slamer-localizer", LogLevel::kInfo, line);
+  } catch (const ConfigError& e) {
+    log_line("slamer-localizer", LogLevel::kWarning,
+             std::string("cannot resume: ") + e.what() + "; starting from the configured initial pose");
+  }
+}
+
 int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
   LocalizerNode node = make_node(config);
+  resume_from_saved_pose(config, &node);
   LcmProcess process("slamer-localizer", lcm_url, config.process);
   int64_t last_particles = std::numeric_limits<int64_t>::min() / 2;
   const LocalizerChannels& ch = config.channels;
-  const auto wait_us = static_cast<int64_t>(config.objects_wait * 1e6);
   NodeCounters reported;
+  std::optional<SavedPose> good_pose;  // the newest pose with status OK
+  std::optional<int64_t> written_utime;
+  int64_t last_scan_wall = now_utime();
+  const auto save_pose = [&] {
+    if (config.pose_file.empty() || !good_pose || written_utime == good_pose->utime) {
+      return;
+    }
+    try {
+      write_file_atomically(config.pose_file, format_saved_pose(*good_pose));
+      written_utime = good_pose->utime;
+    } catch (const std::runtime_error& e) {
+      process.health().count_handler_error(e.what());  // summarized in the log, rate-limited
+    }
+  };
   const auto publish_ready = [&](int64_t now) {
     // Only scans actually processed count toward the processing time p50/p99.
     for (auto start = std::chrono::steady_clock::now();; start = std::chrono::steady_clock::now()) {
-      std::optional<NodeOutput> result = node.poll(now, wait_us);
+      const std::optional<UpdateResult> result = node.poll(now);
       if (!result) {
         break;
       }
       process.record_processing_time(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      for (const OutputEvent& event : outputs_of(*result, result->result.semantic.utime, config, &last_particles)) {
+      for (const OutputEvent& event : outputs_of(*result, node.particles(), config, &last_particles)) {
         process.publish_raw(event.channel, event.bytes);
       }
-      const LocalizerStatus status = result->result.estimate.status;
-      process.set_state(status == LocalizerStatus::kLost ? process_status_t::ERROR
-                        : status == LocalizerStatus::kOk ? process_status_t::OK
-                                                         : process_status_t::DEGRADED,
-                        status == LocalizerStatus::kLost        ? "lost: the scans do not fit the map"
-                        : status == LocalizerStatus::kUncertain ? "uncertain"
-                                                                : "");
+      const auto [state, message] = process_state(result->estimate.status, node.health(), ch);
+      process.set_state(state, message);
+      if (result->estimate.status == LocalizerStatus::kOk) {
+        good_pose = SavedPose{result->semantic.utime, result->estimate.pose,
+                              sigma_of_covariance(result->estimate.covariance)};
+      }
     }
     const NodeCounters& c = node.counters();
     process.count_drop(ch.lidar, c.stale_scans - reported.stale_scans);
     process.count_drop(ch.odometry, c.stale_odometry - reported.stale_odometry);
+    process.count_drop(ch.line_objects, c.stale_objects - reported.stale_objects);
     reported = c;
   };
   process.subscribe<odometry_t>(ch.odometry, [&](const odometry_t& m, const ReceiveInfo&) {
     node.on_odometry(m.utime, {m.x, m.y, m.theta});
   });
   process.subscribe<laser_scan_t>(ch.lidar, [&](const laser_scan_t& m, const ReceiveInfo& info) {
+    last_scan_wall = info.receive_utime;
     node.on_scan(from_message(m));
     publish_ready(info.receive_utime);
   });
-  process.subscribe<line_objects_t>(ch.line_objects, [&](const line_objects_t& m, const ReceiveInfo&) {
+  process.subscribe<line_objects_t>(ch.line_objects, [&](const line_objects_t& m, const ReceiveInfo& info) {
     node.on_objects(from_message(m));
-    publish_ready(std::numeric_limits<int64_t>::min() / 2);
+    publish_ready(info.receive_utime);
   });
   process.subscribe<initial_pose_t>(ch.initial_pose, [&](const initial_pose_t& m, const ReceiveInfo&) {
-    node.on_initial_pose({m.x, m.y, m.theta}, initial_sigma(m));
-    process.log_info("initial pose set");
+    node.on_initial_pose({m.x, m.y, m.theta}, sigma_of_covariance(m.cov));
+    char line[120];
+    std::snprintf(line, sizeof line, "initial pose set: (%.3f, %.3f, %.3f)", m.x, m.y, m.theta);
+    process.log_info(line);
   });
   // A scan whose objects do not come is processed without them after objects_wait.
   process.every(0.01, [&] { publish_ready(now_utime()); });
-  return process.run();
+  process.every(config.pose_save_period, save_pose);
+  process.every(1.0, [&] {
+    if (now_utime() - last_scan_wall > 2'000'000) {
+      process.set_state(process_status_t::DEGRADED, "no scans on " + ch.lidar + " for 2 s: no pose");
+    }
+  });
+  const int code = process.run();
+  save_pose();  // a clean stop keeps the very last good pose
+  return code;
 }
 
 }  // namespace

@@ -88,6 +88,19 @@ void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
   }
 }
 
+void ParticleFilter::diffuse(double seconds) {
+  if (!(seconds > 0.0)) {
+    return;
+  }
+  std::normal_distribution<double> standard(0.0, 1.0);
+  const double position = options_.no_odometry_speed * seconds;
+  const double heading = options_.no_odometry_turn_rate * seconds;
+  for (Particle& p : particles_) {
+    p.pose = {p.pose.x + position * standard(rng_), p.pose.y + position * standard(rng_),
+              wrap_angle(p.pose.theta + heading * standard(rng_))};
+  }
+}
+
 ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, const LineObjectSet* objects) const {
   PreparedScan prepared;
   const double to_cells = 1.0 / geometry_.resolution;

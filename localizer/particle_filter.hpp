@@ -54,6 +54,9 @@ class ParticleFilter {
   bool initialized() const { return !particles_.empty(); }
   // Moves every particle by the odometry increment from `odom_from` to `odom_to`.
   void predict(const Pose2& odom_from, const Pose2& odom_to);
+  // Without odometry: moves every particle by zero-mean noise of the distance
+  // and turn the robot can make in `seconds` (no_odometry_speed, _turn_rate).
+  void diffuse(double seconds);
   // Weights with a scan and (SLFM, SLAMER) its recognized objects, which may be null.
   UpdateResult update(const LaserScan& scan, const LineObjectSet* objects);
 

@@ -7,6 +7,7 @@
 #include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
 #include "common/process/log_replay.hpp"
+#include "common/process/stream_order.hpp"
 #include "recognizer/line_recognizer.hpp"
 #include "recognizer/recognizer_config.hpp"
 #include "slamer/laser_scan_t.hpp"
@@ -28,23 +29,19 @@ std::string check_scan(const laser_scan_t& scan, int max_beams) {
 
 // Keeps track of the scan sequence: out-of-order or repeated scans are dropped;
 // gaps in seq are scans lost before they reached us.
+// Drops stale scans (stream_order.hpp) and counts the ones the sequence numbers say were missed.
 struct ScanOrder {
-  int64_t last_utime = -1;
+  StreamOrder order;
   int64_t last_seq = -1;
   // Returns false for a scan to drop; adds missed scans to *missed.
   bool accept(const laser_scan_t& scan, int64_t* missed) {
-    if (last_utime >= 0 && scan.utime <= last_utime) {
-      if (last_utime - scan.utime > 5'000'000) {  // a log restarted from the top: start over
-        last_utime = scan.utime;
-        last_seq = scan.seq;
-        return true;
-      }
+    const Arrival arrival = order.check(scan.utime);
+    if (arrival == Arrival::kStale) {
       return false;
     }
-    if (last_seq >= 0 && scan.seq > last_seq + 1) {
+    if (arrival == Arrival::kInOrder && last_seq >= 0 && scan.seq > last_seq + 1) {
       *missed += scan.seq - last_seq - 1;
     }
-    last_utime = scan.utime;
     last_seq = scan.seq;
     return true;
   }

@@ -11,7 +11,8 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
                        const std::set<std::string>& replaced,
                        const std::function<void(const std::string&, const std::vector<uint8_t>&, int64_t,
                                                 std::vector<OutputEvent>*)>& handle,
-                       const std::function<void(double)>& progress) {
+                       const std::function<void(double)>& progress,
+                       const std::function<void(std::vector<OutputEvent>*)>& finish) {
   if (std::filesystem::weakly_canonical(in_path) == std::filesystem::weakly_canonical(out_path)) {
     throw std::runtime_error("the output log must not be the input log " + in_path);
   }
@@ -37,8 +38,10 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
     ++stats.events_out;
   };
   std::vector<OutputEvent> outputs;
+  int64_t last_timestamp = 0;
   for (const lcm::LogEvent* event = in.readNextEvent(); event != nullptr; event = in.readNextEvent()) {
     ++stats.events_in;
+    last_timestamp = event->timestamp;
     if (replaced.count(event->channel) != 0) {
       ++stats.events_replaced;
       continue;
@@ -59,6 +62,13 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
     }
     if (progress && stats.events_in % 5000 == 0) {
       progress(static_cast<double>(std::ftell(in.getFilePtr())) / size);
+    }
+  }
+  if (finish) {
+    outputs.clear();
+    finish(&outputs);
+    for (const OutputEvent& output : outputs) {
+      write(output.channel, output.bytes.data(), static_cast<int32_t>(output.bytes.size()), last_timestamp);
     }
   }
   return stats;

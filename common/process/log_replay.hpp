@@ -33,11 +33,14 @@ struct ReplayStats {
 // `handle` gets (channel, bytes, timestamp) of each event on `channels` and
 // appends its outputs. Throws std::runtime_error if a log cannot be opened or
 // written. `progress` (may be empty) is called with the fraction read.
+// `finish` (may be empty) appends what is still pending at the end of the log;
+// it is written with the last event's timestamp.
 ReplayStats replay_log(const std::string& in_path, const std::string& out_path, const std::set<std::string>& channels,
                        const std::set<std::string>& replaced,
                        const std::function<void(const std::string&, const std::vector<uint8_t>&, int64_t,
                                                 std::vector<OutputEvent>*)>& handle,
-                       const std::function<void(double)>& progress);
+                       const std::function<void(double)>& progress,
+                       const std::function<void(std::vector<OutputEvent>*)>& finish = {});
 
 template <class Msg>
 OutputEvent encode_event(const std::string& channel, const Msg& msg) {

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <numbers>
 
-#include "localizer/localizer_node.hpp"
 #include "localizer/motion_model.hpp"
 #include "localizer/particle_filter.hpp"
 #include "localizer/recognition_model.hpp"
 #include "recognizer/line_recognizer.hpp"
+#include "test/localizer/small_world.hpp"
 #include "tools/sim/simulator.hpp"
 
 namespace slamer {
@@ -87,30 +87,6 @@ TEST(MotionModel, NoiselessMotionIsExactAndNoiseHasTheRightSpread) {
   EXPECT_NEAR(back.trans, -0.5, 1e-12);
   EXPECT_NEAR(back.rot1, 0.0, 1e-12);
 }
-
-// The small room world, its map, and a scan and objects simulated at a pose.
-struct SmallWorld {
-  WorldOptions options = load_options<WorldOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml");
-  RobotOptions robot = load_options<RobotOptions>(options.robot_path);
-  SemanticMap map = load_semantic_map(options.map_path);
-  TrueWorld world{map, options, "small_room"};
-
-  LaserScan scan_at(const Pose2& pose) const {
-    LaserScan scan;
-    scan.angle_min = robot.lidar.angle_min;
-    scan.angle_increment = robot.lidar.angle_increment();
-    scan.range_min = static_cast<float>(robot.lidar.range_min);
-    scan.range_max = static_cast<float>(robot.lidar.range_max);
-    std::mt19937 rng(4);
-    const Pose2 sensor = compose(pose, robot.lidar.mount);
-    for (int i = 0; i < robot.lidar.beams; ++i) {
-      const double r =
-          world.cast({sensor.x, sensor.y}, sensor.theta + scan.angle(static_cast<std::size_t>(i)), 31.0, 0.0, rng);
-      scan.ranges.push_back(r <= 30.0 ? static_cast<float>(r) : std::numeric_limits<float>::infinity());
-    }
-    return scan;
-  }
-};
 
 TEST(ParticleFilter, LfmPrefersTheTruePose) {
   const SmallWorld w;
@@ -238,40 +214,6 @@ TEST(ParticleFilter, WeightsStayNormalizedAndResamplingKeepsTheBest) {
   EXPECT_NEAR(sum, 1.0, 1e-9);
   EXPECT_TRUE(result.resampled);  // spread particles, one scan: the ESS collapses
   EXPECT_LT(std::hypot(result.estimate.pose.x - 2.0, result.estimate.pose.y - 3.0), 0.6);
-}
-
-}  // namespace
-}  // namespace slamer
-
-namespace slamer {
-namespace {
-
-TEST(LocalizerNode, OdometryBetweenScansMovesTheEstimate) {
-  const SmallWorld w;
-  LocalizerOptions options;
-  options.mode = LocalizerMode::kLfm;
-  options.particles = 100;
-  options.initial_pose = {2.0, 3.0, 0.0};
-  options.initial_sigma = {0.01, 0.01, 0.01};
-  LocalizerNode node(w.map, options, w.robot.lidar.mount);
-  // Odometry in its own frame (starting at 0), 100 Hz, driving +x at 0.5 m/s; scans at 40 Hz.
-  std::optional<NodeOutput> last;
-  for (int step = 0; step <= 200; ++step) {
-    const int64_t t = 10'000 * step;
-    node.on_odometry(t, {0.005 * step, 0.0, 0.0});
-    if (step % 4 == 0 && step > 0) {  // a scan at t - 15 ms, delivered now
-      LaserScan scan = w.scan_at({2.0 + 0.005 * step - 0.0075, 3.0, 0.0});
-      scan.utime = t - 15'000;
-      node.on_scan(scan);
-      if (auto out = node.poll(std::numeric_limits<int64_t>::max(), 0)) {
-        last = out;
-      }
-    }
-  }
-  ASSERT_TRUE(last.has_value());
-  EXPECT_NEAR(last->result.estimate.pose.x, 2.0 + 1.0 - 0.0075, 0.05);
-  EXPECT_NEAR(last->result.estimate.pose.y, 3.0, 0.05);
-  EXPECT_EQ(node.counters().scans_without_odometry, 0);
 }
 
 }  // namespace

@@ -1,0 +1,248 @@
+// LocalizerNode: pairing scans with objects, stale and backwards input,
+// missing streams; the saved pose file and its atomic write.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "common/process/atomic_file.hpp"
+#include "localizer/localizer_node.hpp"
+#include "localizer/saved_pose.hpp"
+#include "test/localizer/small_world.hpp"
+
+namespace slamer {
+namespace {
+
+constexpr int64_t kFlush = std::numeric_limits<int64_t>::max();
+
+LocalizerOptions node_options(LocalizerMode mode) {
+  LocalizerOptions options;
+  options.mode = mode;
+  options.particles = 100;
+  options.initial_pose = {2.0, 3.0, 0.0};
+  options.initial_sigma = {0.01, 0.01, 0.01};
+  return options;
+}
+
+LineObjectSet objects_for(int64_t utime) {
+  LineObjectSet set;
+  set.utime = utime;
+  set.class_names = {"others"};
+  return set;
+}
+
+TEST(LocalizerNode, OdometryBetweenScansMovesTheEstimate) {
+  const SmallWorld w;
+  LocalizerNode node(w.map, node_options(LocalizerMode::kLfm), w.robot.lidar.mount);
+  // Odometry in its own frame (starting at 0), 100 Hz, driving +x at 0.5 m/s; scans at 40 Hz.
+  std::optional<UpdateResult> last;
+  for (int step = 0; step <= 200; ++step) {
+    const int64_t t = 10'000 * step;
+    node.on_odometry(t, {0.005 * step, 0.0, 0.0});
+    if (step % 4 == 0 && step > 0) {  // a scan at t - 15 ms, delivered now
+      LaserScan scan = w.scan_at({2.0 + 0.005 * step - 0.0075, 3.0, 0.0});
+      scan.utime = t - 15'000;
+      node.on_scan(scan);
+      while (auto out = node.poll(t)) {
+        last = out;
+      }
+    }
+  }
+  ASSERT_TRUE(last.has_value());
+  EXPECT_NEAR(last->estimate.pose.x, 2.0 + 1.0 - 0.0075, 0.05);
+  EXPECT_NEAR(last->estimate.pose.y, 3.0, 0.05);
+  EXPECT_EQ(node.counters().scans_without_odometry, 0);
+  EXPECT_FALSE(node.health().odometry_missing);
+}
+
+TEST(LocalizerNode, ScansWaitInOrderForTheirObjects) {
+  const SmallWorld w;
+  LocalizerNode node(w.map, node_options(LocalizerMode::kSlamer), w.robot.lidar.mount);
+  node.on_odometry(0, {});
+  LaserScan scan = w.scan_at({2.0, 3.0, 0.0});
+  for (const int64_t t : {1'000'000, 1'025'000, 1'050'000}) {
+    scan.utime = t;
+    node.on_scan(scan);
+  }
+  EXPECT_FALSE(node.poll(1'060'000).has_value());  // the first waited 60 ms of 100
+  // The second scan's objects: the first scan's will not come any more.
+  node.on_objects(objects_for(1'025'000));
+  std::optional<UpdateResult> first = node.poll(1'060'000);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->semantic.utime, 1'000'000);
+  std::optional<UpdateResult> second = node.poll(1'060'000);
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(second->semantic.utime, 1'025'000);
+  EXPECT_FALSE(node.poll(1'060'000).has_value());  // the third waits
+  EXPECT_EQ(node.counters().scans_without_objects, 1);
+  // Late objects of the first scan, and a duplicate of the second's: dropped and counted.
+  node.on_objects(objects_for(1'000'000));
+  node.on_objects(objects_for(1'025'000));
+  EXPECT_EQ(node.counters().stale_objects, 2);
+  // The third scan goes without objects once objects_wait has passed.
+  EXPECT_FALSE(node.poll(1'149'000).has_value());
+  ASSERT_TRUE(node.poll(1'150'000).has_value());
+  EXPECT_EQ(node.counters().scans_without_objects, 2);
+  EXPECT_FALSE(node.health().objects_missing);  // objects came 125 ms before
+}
+
+TEST(LocalizerNode, MissingRecognizerStopsTheWaitAndSaysSo) {
+  const SmallWorld w;
+  LocalizerNode node(w.map, node_options(LocalizerMode::kSlamer), w.robot.lidar.mount);
+  LaserScan scan = w.scan_at({2.0, 3.0, 0.0});
+  int released_at_once = 0;
+  for (int i = 0; i < 80; ++i) {  // 2 s of scans and odometry, no objects at all
+    scan.utime = 1'000'000 + 25'000 * i;
+    node.on_odometry(scan.utime, {});
+    node.on_scan(scan);
+    if (node.poll(scan.utime).has_value()) {
+      ++released_at_once;
+    }
+    while (node.poll(scan.utime + 100'000)) {
+    }
+  }
+  EXPECT_TRUE(node.health().objects_missing);
+  EXPECT_TRUE(std::isinf(node.health().objects_age));
+  // After objects_timeout (1 s = 40 scans) every scan goes at once, not after objects_wait.
+  EXPECT_GE(released_at_once, 38);
+  EXPECT_EQ(node.counters().scans_without_objects, 80);
+  // Objects again: the node waits for them again.
+  scan.utime += 25'000;
+  node.on_scan(scan);
+  node.on_objects(objects_for(scan.utime));
+  ASSERT_TRUE(node.poll(scan.utime).has_value());
+  EXPECT_FALSE(node.health().objects_missing);
+}
+
+TEST(LocalizerNode, StaleScansAreDroppedAndTimeGoingBackRestarts) {
+  const SmallWorld w;
+  LocalizerOptions options = node_options(LocalizerMode::kLfm);
+  LocalizerNode node(w.map, options, w.robot.lidar.mount);
+  LaserScan scan = w.scan_at({2.0, 3.0, 0.0});
+  const auto feed = [&](int64_t utime) {
+    scan.utime = utime;
+    node.on_odometry(utime, {});
+    node.on_scan(scan);
+    return node.poll(utime);
+  };
+  ASSERT_TRUE(feed(5'000'000).has_value());
+  ASSERT_TRUE(feed(5'025'000).has_value());
+  EXPECT_FALSE(feed(5'025'000).has_value());  // duplicate
+  EXPECT_FALSE(feed(5'010'000).has_value());  // out of order
+  EXPECT_EQ(node.counters().stale_scans, 2);
+  EXPECT_EQ(node.counters().stale_odometry, 2);
+  EXPECT_EQ(node.counters().resets, 0);
+  // A log replayed from the top: 5 s back. The filter starts over from the initial pose.
+  scan = w.scan_at({2.0, 3.0, 0.0});
+  const std::optional<UpdateResult> restarted = feed(25'000);
+  ASSERT_TRUE(restarted.has_value());
+  EXPECT_EQ(node.counters().resets, 1);
+  EXPECT_NEAR(restarted->estimate.pose.x, 2.0, 0.05);
+  ASSERT_TRUE(feed(50'000).has_value());
+  EXPECT_EQ(node.counters().stale_scans, 2);
+}
+
+// Drives 0.4 m/s along +x for 2 s with scans only; returns the last estimate.
+std::optional<UpdateResult> drive_without_odometry(const SmallWorld& w, LocalizerNode* node) {
+  std::optional<UpdateResult> last;
+  for (int i = 0; i <= 80; ++i) {
+    LaserScan scan = w.scan_at({2.0 + 0.01 * i, 3.0, 0.0});
+    scan.utime = 1'000'000 + 25'000 * i;
+    node->on_scan(scan);
+    while (auto out = node->poll(scan.utime)) {
+      last = out;
+    }
+  }
+  return last;
+}
+
+TEST(LocalizerNode, WithoutOdometryTheParticlesFollowTheScans) {
+  const SmallWorld w;
+  LocalizerOptions options = node_options(LocalizerMode::kLfm);
+  options.particles = 300;
+  LocalizerNode node(w.map, options, w.robot.lidar.mount);
+  const std::optional<UpdateResult> last = drive_without_odometry(w, &node);
+  ASSERT_TRUE(last.has_value());
+  EXPECT_NEAR(last->estimate.pose.x, 2.8, 0.1);
+  EXPECT_NEAR(last->estimate.pose.y, 3.0, 0.1);
+  EXPECT_TRUE(node.health().odometry_missing);
+  EXPECT_EQ(node.counters().scans_without_odometry, 81);
+  // Odometry comes back at a far-off reading: its first sample is a new reference, not a jump.
+  LaserScan scan = w.scan_at({2.8, 3.0, 0.0});
+  scan.utime = 3'050'000;
+  node.on_odometry(3'040'000, {100.0, -50.0, 2.0});
+  node.on_odometry(3'060'000, {100.0, -50.0, 2.0});
+  node.on_scan(scan);
+  const std::optional<UpdateResult> back = node.poll(scan.utime);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_FALSE(node.health().odometry_missing);
+  EXPECT_NEAR(back->estimate.pose.x, 2.8, 0.1);
+  // The diffusion is what follows: with no_odometry_speed 0 the estimate is left behind.
+  options.no_odometry_speed = 0.0;
+  options.no_odometry_turn_rate = 0.0;
+  LocalizerNode still(w.map, options, w.robot.lidar.mount);
+  const std::optional<UpdateResult> behind = drive_without_odometry(w, &still);
+  ASSERT_TRUE(behind.has_value());
+  EXPECT_LT(behind->estimate.pose.x, 2.3);
+}
+
+TEST(SavedPose, RoundTripsExactlyAndRejectsBadFiles) {
+  SavedPose saved;
+  saved.utime = 1'700'000'000'123'456;
+  saved.pose = {12.345678901234567, -0.1, 3.0};
+  saved.sigma = {0.05, 0.06, 0.01};
+  const auto back = parse_options<SavedPose>(format_saved_pose(saved), "pose.yaml");
+  EXPECT_EQ(back.utime, saved.utime);
+  EXPECT_EQ(back.pose.x, saved.pose.x);
+  EXPECT_EQ(back.pose.y, saved.pose.y);
+  EXPECT_EQ(back.pose.theta, saved.pose.theta);
+  EXPECT_EQ(back.sigma, saved.sigma);
+  for (const std::string& bad : {std::string("utime: 1\npose: [1, 2]\nsigma: [0, 0, 0]\n"),
+                                 std::string("utime: 1\npose: [1, 2, 3]\nsigma: [0, 0, 0]\nspeed: 4\n"),
+                                 std::string("utime: 1\npose: [1, nan, 3]\nsigma: [0, 0, 0]\n"),
+                                 std::string("utime: 1\npose: [1, 2, 3]\nsigma: [-1, 0, 0]\n"),
+                                 std::string("utime: 1\npose: [1, 2,"), std::string("\x01\x02\xff")}) {
+    try {
+      parse_options<SavedPose>(bad, "pose.yaml");
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const ConfigError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("pose.yaml"), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  }
+  const double covariance[9] = {0.0025, 0, 0, 0, 0.0, 0, 0, 0, 0.0004};
+  const std::vector<double> sigma = sigma_of_covariance(covariance);
+  EXPECT_NEAR(sigma[0], 0.05, 1e-12);
+  EXPECT_NEAR(sigma[1], 1e-3, 1e-12);  // floored
+  EXPECT_NEAR(sigma[2], 0.02, 1e-12);
+}
+
+TEST(AtomicFile, ReplacesTheWholeFileAndFailsInOneLine) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "slamer_atomic_file_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "pose.yaml").string();
+  write_file_atomically(path, "first, a longer content\n");
+  write_file_atomically(path, "second\n");
+  std::ifstream in(path);
+  std::stringstream content;
+  content << in.rdbuf();
+  EXPECT_EQ(content.str(), "second\n");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1)
+      << "no temporary file left behind";
+  try {
+    write_file_atomically((dir / "missing" / "pose.yaml").string(), "x");
+    ADD_FAILURE() << "wrote into a folder that does not exist";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("missing/pose.yaml"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace slamer
