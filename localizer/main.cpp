@@ -5,8 +5,8 @@
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 
 #include "common/map/semantic_map.hpp"
@@ -75,7 +75,8 @@ std::vector<OutputEvent> outputs_of(const UpdateResult& result, const std::vecto
   std::vector<OutputEvent> events;
   events.push_back(encode_event(config.channels.pose, to_pose_message(result, utime, config.localizer.particles)));
   events.push_back(encode_event(config.channels.semantic_objects, to_semantic_objects_message(result.semantic)));
-  if (config.particles_out > 0 && utime - *last_particles_utime >= static_cast<int64_t>(config.particles_period * 1e6)) {
+  if (config.particles_out > 0 &&
+      utime - *last_particles_utime >= static_cast<int64_t>(config.particles_period * 1e6)) {
     events.push_back(
         encode_event(config.channels.particles, to_particles_message(particles, utime, config.particles_out)));
     *last_particles_utime = utime;
@@ -159,6 +160,9 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
   if (terminal) {
     std::fprintf(stderr, "\n");
   }
+  if (!stats.log_problems.empty()) {
+    log_line("slamer-localizer", LogLevel::kWarning, stats.log_problems);
+  }
   const NodeCounters& c = node.counters();
   log_line("slamer-localizer", LogLevel::kInfo,
            "replayed " + std::to_string(scans) + " scans of " + in + " into " + out + " (" +
@@ -210,8 +214,8 @@ void resume_from_saved_pose(const LocalizerProcessConfig& config, LocalizerNode*
     const auto saved = load_options<SavedPose>(config.pose_file);
     node->on_initial_pose(saved.pose, saved.sigma);
     char line[160];
-    std::snprintf(line, sizeof line, "resuming from the pose saved in %s: (%.3f, %.3f, %.3f)",
-                  config.pose_file.c_str(), saved.pose.x, saved.pose.y, saved.pose.theta);
+    std::snprintf(line, sizeof line, "resuming from the pose saved in %s: (%.3f, %.3f, %.3f)", config.pose_file.c_str(),
+                  saved.pose.x, saved.pose.y, saved.pose.theta);
     log_line("slamer-localizer", LogLevel::kInfo, line);
   } catch (const ConfigError& e) {
     log_line("slamer-localizer", LogLevel::kWarning,
@@ -254,8 +258,8 @@ int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
       const auto [state, message] = process_state(result->estimate.status, node.health(), ch);
       process.set_state(state, message);
       if (result->estimate.status == LocalizerStatus::kOk) {
-        good_pose = SavedPose{result->semantic.utime, result->estimate.pose,
-                              sigma_of_covariance(result->estimate.covariance)};
+        good_pose =
+            SavedPose{result->semantic.utime, result->estimate.pose, sigma_of_covariance(result->estimate.covariance)};
       }
     }
     const NodeCounters& c = node.counters();

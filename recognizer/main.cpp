@@ -115,6 +115,9 @@ int run_replay(const RecognizerProcessConfig& config, const std::string& in, con
   if (terminal) {
     std::fprintf(stderr, "\n");
   }
+  if (!stats.log_problems.empty()) {
+    log_line("slamer-recognizer", LogLevel::kWarning, stats.log_problems);
+  }
   log_line("slamer-recognizer", LogLevel::kInfo,
            "replayed " + std::to_string(stats.events_handled) + " scans from " + in + " into " + out + " (" +
                std::to_string(bad) + " undecodable, " + std::to_string(dropped) + " out of order)");

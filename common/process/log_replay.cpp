@@ -3,7 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
+#include <optional>
 #include <stdexcept>
+
+#include "common/process/event_log.hpp"
 
 namespace slamer {
 
@@ -16,15 +19,11 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
   if (std::filesystem::weakly_canonical(in_path) == std::filesystem::weakly_canonical(out_path)) {
     throw std::runtime_error("the output log must not be the input log " + in_path);
   }
-  lcm::LogFile in(in_path, "r");
-  if (!in.good()) {
-    throw std::runtime_error("cannot read log " + in_path);
-  }
+  EventLogReader in(in_path);
   lcm::LogFile out(out_path, "w");
   if (!out.good()) {
     throw std::runtime_error("cannot write log " + out_path);
   }
-  const auto size = static_cast<double>(std::max<std::uintmax_t>(std::filesystem::file_size(in_path), 1));
   ReplayStats stats;
   const auto write = [&](const std::string& channel, const void* data, int32_t length, int64_t timestamp) {
     lcm::LogEvent event;
@@ -39,20 +38,19 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
   };
   std::vector<OutputEvent> outputs;
   int64_t last_timestamp = 0;
-  for (const lcm::LogEvent* event = in.readNextEvent(); event != nullptr; event = in.readNextEvent()) {
+  while (const std::optional<LogEvent> event = in.next()) {
     ++stats.events_in;
     last_timestamp = event->timestamp;
     if (replaced.count(event->channel) != 0) {
       ++stats.events_replaced;
       continue;
     }
-    write(event->channel, event->data, event->datalen, event->timestamp);
+    write(event->channel, event->data.data(), static_cast<int32_t>(event->data.size()), event->timestamp);
     if (channels.count(event->channel) != 0) {
       ++stats.events_handled;
       outputs.clear();
-      const auto* bytes = static_cast<const uint8_t*>(event->data);
       try {
-        handle(event->channel, std::vector<uint8_t>(bytes, bytes + event->datalen), event->timestamp, &outputs);
+        handle(event->channel, event->data, event->timestamp, &outputs);
       } catch (const std::exception&) {
         ++stats.handler_errors;  // the event is skipped, the replay goes on
       }
@@ -61,9 +59,10 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
       }
     }
     if (progress && stats.events_in % 5000 == 0) {
-      progress(static_cast<double>(std::ftell(in.getFilePtr())) / size);
+      progress(in.fraction_read());
     }
   }
+  stats.log_problems = in.problems();
   if (finish) {
     outputs.clear();
     finish(&outputs);

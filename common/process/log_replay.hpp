@@ -28,10 +28,12 @@ struct ReplayStats {
   int64_t events_handled = 0;
   int64_t events_out = 0;
   int64_t handler_errors = 0;
+  std::string log_problems;  // "" for an intact input log, else one line (EventLogReader::problems)
 };
 
 // `handle` gets (channel, bytes, timestamp) of each event on `channels` and
-// appends its outputs. Throws std::runtime_error if a log cannot be opened or
+// appends its outputs. Damaged stretches of the input log are skipped (see
+// event_log.hpp) and reported in log_problems. Throws std::runtime_error if a log cannot be opened or
 // written. `progress` (may be empty) is called with the fraction read.
 // `finish` (may be empty) appends what is still pending at the end of the log;
 // it is written with the last event's timestamp.

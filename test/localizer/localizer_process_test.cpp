@@ -1,6 +1,6 @@
 // slamer-localizer as a program: an offline replay is byte-identical for a
-// seed, replaces earlier outputs, and scores on the small world; bad input
-// to the command line gives one line.
+// seed, replaces earlier outputs, scores on the small world, and reads a
+// damaged log around the damage; bad input to the command line gives one line.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -86,7 +86,20 @@ TEST(SlamerLocalizer, ReplayIsDeterministicAndLocalizesTheSmallWorld) {
   ASSERT_NE(at, std::string::npos) << json;
   EXPECT_LT(std::stod(json.substr(at + 19)), 0.10) << json;
   EXPECT_NE(json.find("\"lost_fraction\": 0}"), std::string::npos) << json;
-  for (const std::string& f : {sensors, recognized, outputs[0], outputs[1], again}) {
+  // A damaged copy (a stretch of zeros in the middle): replayed around the damage, said in one line.
+  const std::string damaged = kBinary + "/loc_damaged.lcm";
+  const std::string damaged_out = kBinary + "/loc_damaged_out.lcm";
+  std::string bytes = read_bytes(recognized);
+  std::fill_n(bytes.begin() + static_cast<std::ptrdiff_t>(bytes.size() / 2), 3000, '\0');
+  std::ofstream(damaged, std::ios::binary) << bytes;
+  std::string err;
+  ASSERT_EQ(run("slamer-localizer", {"--config", config, "--replay", damaged, "--out", damaged_out}, &err), 0) << err;
+  EXPECT_NE(err.find("WARN " + damaged + ": skipped "), std::string::npos) << err;
+  EXPECT_NE(err.find(" damaged bytes in 1 place(s)\n"), std::string::npos) << err;
+  const auto damaged_counts = channel_counts(damaged_out);
+  EXPECT_GE(damaged_counts.at("POSE"), counts.at("LIDAR") - 3);  // 3000 bytes: at most a few events
+  EXPECT_EQ(damaged_counts.at("POSE"), damaged_counts.at("LIDAR"));
+  for (const std::string& f : {sensors, recognized, outputs[0], outputs[1], again, damaged, damaged_out}) {
     std::remove(f.c_str());
   }
 }

@@ -7,12 +7,13 @@
 // Prints the rules as YAML for config/recognizer.yaml and the accuracies on stderr.
 #include <cstdio>
 #include <iostream>
-#include <lcm/lcm-cpp.hpp>
 #include <map>
 
 #include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
+#include "common/process/event_log.hpp"
 #include "common/process/lcm_process.hpp"
+#include "common/process/log.hpp"
 #include "recognizer/line_recognizer.hpp"
 #include "recognizer/recognizer_config.hpp"
 #include "slamer/laser_scan_t.hpp"
@@ -84,23 +85,20 @@ int main(int argc, char** argv) {
         int64_t right_before = 0;
         std::vector<std::pair<int, int>> samples;  // (bin, true class index in recognizer classes)
         for (const std::string& path : cli.positional()) {
-          lcm::LogFile log(path, "r");
-          if (!log.good()) {
-            throw std::runtime_error("cannot read log " + path);
-          }
+          slamer::EventLogReader log(path);
           std::map<int64_t, slamer::Pose2> truth;
           int64_t time_origin = -1;
-          for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
-            const auto size = static_cast<std::size_t>(e->datalen);
+          while (const std::optional<slamer::LogEvent> e = log.next()) {
+            const auto size = e->data.size();
             if (e->channel == eval.channels.ground_truth) {
               slamer::pose_estimate_t m{};
-              if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
+              if (slamer::decode_message(e->data.data(), size, &m) == slamer::DecodeStatus::kOk) {
                 truth[m.utime] = {m.x, m.y, m.theta};
                 time_origin = time_origin < 0 ? m.utime : time_origin;
               }
             } else if (e->channel == config.lidar_channel) {
               slamer::laser_scan_t m{};
-              if (slamer::decode_message(e->data, size, &m) != slamer::DecodeStatus::kOk) {
+              if (slamer::decode_message(e->data.data(), size, &m) != slamer::DecodeStatus::kOk) {
                 continue;
               }
               const auto pose = truth.find(m.utime);
@@ -128,6 +126,9 @@ int main(int argc, char** argv) {
                 }
               }
             }
+          }
+          if (!log.problems().empty()) {
+            slamer::log_line("slamer-calibrate-recognizer", slamer::LogLevel::kWarning, log.problems());
           }
         }
         // Rules from the counts; accuracy of their most likely class on the same objects.

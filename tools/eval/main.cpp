@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <lcm/lcm-cpp.hpp>
 #include <map>
 
 #include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
+#include "common/process/event_log.hpp"
 #include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
 #include "slamer/line_objects_t.hpp"
@@ -24,27 +24,22 @@ namespace {
 // Reads what scoring needs from a log. `estimate` names the channel of the
 // estimate; ODOMETRY is placed in the map by the first ground-truth pose.
 RunInputs read_run(const std::string& path, const EvalChannels& channels, const std::string& estimate) {
-  lcm::LogFile log(path, "r");
-  if (!log.good()) {
-    throw std::runtime_error("cannot read log " + path);
-  }
+  EventLogReader log(path);
   RunInputs run;
   std::vector<PoseSample> odometry;
   std::map<std::string, int64_t> errors;
-  const auto decode = [&](const lcm::LogEvent* event, auto* message) {
-    const DecodeStatus status = decode_message(event->data, static_cast<std::size_t>(event->datalen), message);
+  const auto decode = [&](const std::optional<LogEvent>& event, auto* message) {
+    const DecodeStatus status = decode_message(event->data.data(), event->data.size(), message);
     if (status != DecodeStatus::kOk) {
       ++errors[event->channel];
     }
     return status == DecodeStatus::kOk;
   };
   const bool terminal = isatty(STDERR_FILENO) != 0;
-  const auto size = std::filesystem::file_size(path);
   int64_t events = 0;
-  for (const lcm::LogEvent* event = log.readNextEvent(); event != nullptr; event = log.readNextEvent()) {
+  while (const std::optional<LogEvent> event = log.next()) {
     if (terminal && ++events % 20000 == 0) {
-      std::fprintf(stderr, "\rslamer-eval: reading %s %3.0f%%", path.c_str(),
-                   100.0 * static_cast<double>(std::ftell(log.getFilePtr())) / static_cast<double>(size));
+      std::fprintf(stderr, "\rslamer-eval: reading %s %3.0f%%", path.c_str(), 100.0 * log.fraction_read());
     }
     const std::string& channel = event->channel;
     if (channel == channels.ground_truth || (channel == estimate && estimate != channels.odometry)) {
@@ -77,6 +72,9 @@ RunInputs read_run(const std::string& path, const EvalChannels& channels, const 
   }
   if (terminal && events >= 20000) {
     std::fprintf(stderr, "\n");
+  }
+  if (!log.problems().empty()) {
+    log_line("slamer-eval", LogLevel::kWarning, log.problems());
   }
   for (const auto& [channel, count] : errors) {
     log_line("slamer-eval", LogLevel::kWarning,

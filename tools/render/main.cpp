@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <deque>
 #include <filesystem>
-#include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #ifdef SLAMER_HAVE_VIDEOIO
@@ -14,6 +13,7 @@
 
 #include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
+#include "common/process/event_log.hpp"
 #include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
 #include "common/robot/robot_options.hpp"
@@ -98,10 +98,7 @@ int main(int argc, char** argv) {
                            "writing PNG frames only");
 #endif
         }
-        lcm::LogFile log(cli.positional()[0], "r");
-        if (!log.good()) {
-          throw std::runtime_error("cannot read log " + cli.positional()[0]);
-        }
+        slamer::EventLogReader log(cli.positional()[0]);
         slamer::Pending pending;
         int64_t scan_count = 0;
         int64_t frames = 0;
@@ -138,11 +135,11 @@ int main(int argc, char** argv) {
           }
         };
         const auto done = [&] { return max_frames > 0 && frames >= max_frames; };
-        for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr && !done(); e = log.readNextEvent()) {
-          const auto size = static_cast<std::size_t>(e->datalen);
+        for (std::optional<slamer::LogEvent> e = log.next(); e && !done(); e = log.next()) {
+          const auto size = e->data.size();
           if (e->channel == "LIDAR") {
             slamer::laser_scan_t m{};
-            if (slamer::decode_message(e->data, size, &m) != slamer::DecodeStatus::kOk) {
+            if (slamer::decode_message(e->data.data(), size, &m) != slamer::DecodeStatus::kOk) {
               continue;
             }
             first_utime = first_utime < 0 ? m.utime : first_utime;
@@ -156,12 +153,12 @@ int main(int argc, char** argv) {
             }
           } else if (e->channel == "GROUND_TRUTH" || e->channel == "POSE") {
             slamer::pose_estimate_t m{};
-            if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
+            if (slamer::decode_message(e->data.data(), size, &m) == slamer::DecodeStatus::kOk) {
               (e->channel == "POSE" ? pending.estimate : pending.truth)[m.utime] = slamer::to_pose(m);
             }
           } else if (e->channel == "PARTICLES") {
             slamer::particles_t m{};
-            if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
+            if (slamer::decode_message(e->data.data(), size, &m) == slamer::DecodeStatus::kOk) {
               auto& list = pending.particles[m.utime];
               for (int32_t i = 0; i < m.n; ++i) {
                 list.push_back({m.x[static_cast<std::size_t>(i)], m.y[static_cast<std::size_t>(i)],
@@ -170,12 +167,12 @@ int main(int argc, char** argv) {
             }
           } else if (e->channel == "SEMANTIC_OBJECTS") {
             slamer::semantic_objects_t m{};
-            if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
+            if (slamer::decode_message(e->data.data(), size, &m) == slamer::DecodeStatus::kOk) {
               pending.semantic[m.utime] = slamer::from_message(m);
             }
           } else if (e->channel == "LINE_OBJECTS") {
             slamer::line_objects_t m{};
-            if (slamer::decode_message(e->data, size, &m) == slamer::DecodeStatus::kOk) {
+            if (slamer::decode_message(e->data.data(), size, &m) == slamer::DecodeStatus::kOk) {
               pending.recognized[m.utime] = slamer::from_message(m);
             }
           }
@@ -186,6 +183,9 @@ int main(int argc, char** argv) {
         }
         if (terminal) {
           std::fprintf(stderr, "\n");
+        }
+        if (!log.problems().empty()) {
+          slamer::log_line("slamer-render", slamer::LogLevel::kWarning, log.problems());
         }
         slamer::log_line("slamer-render", slamer::LogLevel::kInfo,
                          "wrote " + std::to_string(frames) + " frames to " + out);
