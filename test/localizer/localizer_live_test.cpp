@@ -38,8 +38,13 @@ int64_t wall_utime() {
 class Bus {
  public:
   explicit Bus(const std::string& url) : lcm_(url) {
-    lcm_.subscribe("POSE", &Bus::on_pose, this);
-    lcm_.subscribe("PROCESS_STATUS", &Bus::on_status, this);
+    // subscribeFunction with a context, as the stack does: LCM's member-function
+    // subscription trips UBSan's vptr check inside lcm-cpp-impl.hpp.
+    lcm_.subscribeFunction(
+        "POSE", +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Bus* self) { self->on_pose(rbuf); }, this);
+    lcm_.subscribeFunction(
+        "PROCESS_STATUS", +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Bus* self) { self->on_status(rbuf); },
+        this);
   }
   bool good() { return lcm_.good(); }
 
@@ -81,13 +86,13 @@ class Bus {
   std::vector<process_status_t> statuses;  // of slamer-localizer
 
  private:
-  void on_pose(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  void on_pose(const lcm::ReceiveBuffer* rbuf) {
     pose_estimate_t m{};
     if (decode_message(rbuf->data, rbuf->data_size, &m) == DecodeStatus::kOk) {
       poses.push_back(m);
     }
   }
-  void on_status(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  void on_status(const lcm::ReceiveBuffer* rbuf) {
     process_status_t m{};
     if (decode_message(rbuf->data, rbuf->data_size, &m) == DecodeStatus::kOk && m.process == "slamer-localizer") {
       statuses.push_back(m);
@@ -151,8 +156,8 @@ TEST(SlamerLocalizerLive, InitialPoseFaultsAndResumingFromTheSavedPose) {
     bus.drive(w, truth, 2.0);
     const int64_t now = wall_utime();
     bus.send_scan(w, truth, now);
-    bus.send_scan(w, truth, now);            // the same scan again
-    bus.send_scan(w, truth, now - 30'000);   // older than the last
+    bus.send_scan(w, truth, now);           // the same scan again
+    bus.send_scan(w, truth, now - 30'000);  // older than the last
     bus.listen(0.3);
     bus.drive(w, truth, 1.5);
     ASSERT_FALSE(bus.poses.empty()) << localizer.stderr_text();
