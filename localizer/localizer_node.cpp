@@ -9,8 +9,12 @@ namespace {
 constexpr std::size_t kOdometryKept = 2000;  // 20 s at 100 Hz
 constexpr std::size_t kMaxWaiting = 16;      // scans held for their objects (0.4 s at 40 Hz)
 
-double seconds(int64_t microseconds) { return static_cast<double>(microseconds) * 1e-6; }
-int64_t microseconds(double s) { return static_cast<int64_t>(s * 1e6); }
+double seconds(int64_t microseconds) {
+  return static_cast<double>(microseconds) * 1e-6;
+}
+int64_t microseconds(double s) {
+  return static_cast<int64_t>(s * 1e6);
+}
 
 }  // namespace
 
@@ -83,8 +87,8 @@ void LocalizerNode::on_objects(const LineObjectSet& objects) {
   if (!last_objects_utime_ || objects.utime > *last_objects_utime_) {
     last_objects_utime_ = objects.utime;
   }
-  const auto waiting = std::find_if(pending_.begin(), pending_.end(),
-                                    [&](const Pending& p) { return p.scan.utime == objects.utime; });
+  const auto waiting =
+      std::find_if(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.scan.utime == objects.utime; });
   if (waiting == pending_.end() || waiting->objects) {
     ++counters_.stale_objects;  // its scan is gone (processed, dropped) or it came twice
     return;
