@@ -66,6 +66,7 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   o->initial_pose = read_pose(reader, "initial_pose", o->initial_pose);
   reader.read("initial_sigma", &o->initial_sigma, non_negative(), 3);
   reader.read("uncertain_position_sigma", &o->uncertain_position_sigma, positive());
+  reader.read("uncertain_ess_fraction", &o->uncertain_ess_fraction, probability());
   reader.read("lost_mean_log_likelihood", &o->lost_mean_log_likelihood);
   reader.read("lost_after", &o->lost_after, at_least(1));
   reader.read("objects_wait", &o->objects_wait, in_range(0.0, 10.0));

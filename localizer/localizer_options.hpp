@@ -53,7 +53,8 @@ struct LocalizerOptions {
   Pose2 initial_pose;
   std::vector<double> initial_sigma{0.2, 0.2, 0.1};  // [m, m, rad]
   double uncertain_position_sigma = 0.5;             // [m]
-  double lost_mean_log_likelihood = -3.0;            // per used beam; below for `lost_after` scans: LOST
+  double uncertain_ess_fraction = 0.05;    // ESS below this * particles: a few particles carry it all, UNCERTAIN
+  double lost_mean_log_likelihood = -3.0;  // per used beam; below for `lost_after` scans: LOST
   int lost_after = 20;
   // Input streams (LocalizerNode).
   double objects_wait = 0.1;           // [s] how long a scan waits for its LINE_OBJECTS

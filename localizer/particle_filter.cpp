@@ -370,7 +370,10 @@ PoseEstimate ParticleFilter::estimate() const {
     e.status = LocalizerStatus::kInitializing;
   } else if (low_likelihood_scans_ >= options_.lost_after) {
     e.status = LocalizerStatus::kLost;
-  } else if (std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.uncertain_position_sigma) {
+  } else if (std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.uncertain_position_sigma ||
+             e.ess < options_.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
+    // Spread particles, or a posterior resting on a handful of them (e.g. right after a
+    // wide initialization: tight but not yet to be trusted).
     e.status = LocalizerStatus::kUncertain;
   } else {
     e.status = LocalizerStatus::kOk;

@@ -1,5 +1,5 @@
 // LocalizerNode: pairing scans with objects, stale and backwards input,
-// missing streams; the saved pose file and its atomic write.
+// missing streams; the filter's status; the saved pose file and its atomic write.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -186,6 +186,35 @@ TEST(LocalizerNode, WithoutOdometryTheParticlesFollowTheScans) {
   const std::optional<UpdateResult> behind = drive_without_odometry(w, &still);
   ASSERT_TRUE(behind.has_value());
   EXPECT_LT(behind->estimate.pose.x, 2.3);
+}
+
+TEST(ParticleFilter, StatusSaysWhenItIsUncertainOrLost) {
+  const SmallWorld w;
+  LocalizerOptions options = node_options(LocalizerMode::kLfm);
+  options.particles = 300;
+  ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+  // Spread over 1 m: uncertain until the scans have pulled the particles together.
+  filter.initialize({2.0, 3.0, 0.0}, {1.0, 1.0, 0.05});
+  EXPECT_EQ(filter.estimate().status, LocalizerStatus::kInitializing);
+  const LaserScan here = w.scan_at({2.0, 3.0, 0.0});
+  const std::vector<double> sigma{0.02, 0.02, 0.01};
+  std::vector<LocalizerStatus> statuses;
+  for (int i = 0; i < 15; ++i) {
+    statuses.push_back(filter.update(here, nullptr).estimate.status);
+    filter.predict({}, {});  // standing still: the motion model adds no noise
+  }
+  EXPECT_EQ(statuses.front(), LocalizerStatus::kUncertain);
+  EXPECT_EQ(statuses.back(), LocalizerStatus::kOk);
+  // Kidnapped: the scans now come from the other room. Not silent: LOST after lost_after scans.
+  const LaserScan elsewhere = w.scan_at({8.5, 1.2, 2.5});
+  int scans_until_lost = 0;
+  while (filter.update(elsewhere, nullptr).estimate.status != LocalizerStatus::kLost && scans_until_lost < 100) {
+    ++scans_until_lost;
+  }
+  EXPECT_EQ(scans_until_lost + 1, options.lost_after);
+  // Put back where it is: OK again at once.
+  filter.initialize({8.5, 1.2, 2.5}, sigma);
+  EXPECT_EQ(filter.update(elsewhere, nullptr).estimate.status, LocalizerStatus::kOk);
 }
 
 TEST(SavedPose, RoundTripsExactlyAndRejectsBadFiles) {
