@@ -1,6 +1,7 @@
 #include "localizer/localizer_node.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace slamer {
@@ -41,6 +42,10 @@ void LocalizerNode::reset() {
 }
 
 void LocalizerNode::on_odometry(int64_t utime, const Pose2& pose) {
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
+    ++counters_.invalid_odometry;  // one NaN would carry into every particle
+    return;
+  }
   switch (odometry_order_.check(utime)) {
     case Arrival::kStale:
       ++counters_.stale_odometry;
@@ -58,11 +63,17 @@ void LocalizerNode::on_odometry(int64_t utime, const Pose2& pose) {
   }
 }
 
-void LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>& sigma) {
+bool LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>& sigma) {
+  const auto finite = [](double v) { return std::isfinite(v); };
+  if (!finite(pose.x) || !finite(pose.y) || !finite(pose.theta) || sigma.size() != 3 ||
+      !std::all_of(sigma.begin(), sigma.end(), [](double v) { return std::isfinite(v) && v >= 0.0; })) {
+    return false;
+  }
   start_pose_ = pose;
   start_sigma_ = sigma;
   filter_.initialize(pose, sigma);
   last_odometry_used_.reset();  // the next scan's odometry is the new reference
+  return true;
 }
 
 void LocalizerNode::on_scan(const LaserScan& scan) {

@@ -24,7 +24,8 @@ struct NodeCounters {
   int64_t stale_objects = 0;  // for no scan still waiting
   int64_t scans_without_objects = 0;
   int64_t scans_without_odometry = 0;
-  int64_t resets = 0;  // time went backwards
+  int64_t resets = 0;            // time went backwards
+  int64_t invalid_odometry = 0;  // non-finite pose
 };
 
 // Which inputs the last processed scan had to do without.
@@ -40,7 +41,8 @@ class LocalizerNode {
   LocalizerNode(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount);
 
   void on_odometry(int64_t utime, const Pose2& pose);
-  void on_initial_pose(const Pose2& pose, const std::vector<double>& sigma);
+  // Returns false (and changes nothing) for a non-finite pose or sigma.
+  bool on_initial_pose(const Pose2& pose, const std::vector<double>& sigma);
   void on_scan(const LaserScan& scan);
   void on_objects(const LineObjectSet& objects);
   // Processes the oldest waiting scan if it may go (see above) by `now_utime`

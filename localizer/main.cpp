@@ -84,6 +84,14 @@ std::vector<OutputEvent> outputs_of(const UpdateResult& result, const std::vecto
   return events;
 }
 
+// An INITIAL_POSE in a log line: the pose and the position sigmas it asks for.
+std::string describe(const initial_pose_t& m) {
+  char text[160];
+  std::snprintf(text, sizeof text, "(%.3f, %.3f, %.3f), sigma (%.3g, %.3g, %.3g)", m.x, m.y, m.theta,
+                std::sqrt(m.cov[0]), std::sqrt(m.cov[4]), std::sqrt(m.cov[8]));
+  return text;
+}
+
 // The node with the map's fields built; the map itself is freed on return.
 LocalizerNode make_node(const LocalizerProcessConfig& config) {
   if (config.map.empty()) {
@@ -145,8 +153,9 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
           }
         } else if (channel == ch.initial_pose) {
           initial_pose_t m{};
-          if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk) {
-            node.on_initial_pose({m.x, m.y, m.theta}, sigma_of_covariance(m.cov));
+          if (decode_message(bytes.data(), bytes.size(), &m) == DecodeStatus::kOk &&
+              !node.on_initial_pose({m.x, m.y, m.theta}, sigma_of_covariance(m.cov))) {
+            log_line("slamer-localizer", LogLevel::kWarning, "INITIAL_POSE ignored: " + describe(m));
           }
         }
         publish_ready(outputs, timestamp);
@@ -264,7 +273,8 @@ int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
     }
     const NodeCounters& c = node.counters();
     process.count_drop(ch.lidar, c.stale_scans - reported.stale_scans);
-    process.count_drop(ch.odometry, c.stale_odometry - reported.stale_odometry);
+    process.count_drop(ch.odometry,
+                       c.stale_odometry - reported.stale_odometry + c.invalid_odometry - reported.invalid_odometry);
     process.count_drop(ch.line_objects, c.stale_objects - reported.stale_objects);
     reported = c;
   };
@@ -281,10 +291,12 @@ int run_live(const LocalizerProcessConfig& config, const std::string& lcm_url) {
     publish_ready(info.receive_utime);
   });
   process.subscribe<initial_pose_t>(ch.initial_pose, [&](const initial_pose_t& m, const ReceiveInfo&) {
-    node.on_initial_pose({m.x, m.y, m.theta}, sigma_of_covariance(m.cov));
-    char line[120];
-    std::snprintf(line, sizeof line, "initial pose set: (%.3f, %.3f, %.3f)", m.x, m.y, m.theta);
-    process.log_info(line);
+    if (!node.on_initial_pose({m.x, m.y, m.theta}, sigma_of_covariance(m.cov))) {
+      process.count_drop(ch.initial_pose);
+      process.log_warning("INITIAL_POSE ignored: " + describe(m));
+      return;
+    }
+    process.log_info("initial pose set: " + describe(m));
   });
   // A scan whose objects do not come is processed without them after objects_wait.
   process.every(0.01, [&] { publish_ready(now_utime()); });

@@ -146,8 +146,10 @@ ParticleFilter::PreparedObjects ParticleFilter::prepare_objects(const LineObject
   PreparedObjects prepared;
   prepared.class_names = set.class_names;
   for (const LineObject& object : set.objects) {
-    if (object.probs.size() != set.class_names.size() || set.class_names.empty()) {
-      continue;  // a malformed object tells nothing
+    const bool finite = object.start.allFinite() && object.end.allFinite() &&
+                        std::all_of(object.probs.begin(), object.probs.end(), [](float p) { return std::isfinite(p); });
+    if (object.probs.size() != set.class_names.size() || set.class_names.empty() || !finite) {
+      continue;  // a malformed object tells nothing (and a NaN would poison every weight)
     }
     PreparedObjects::Object o;
     o.object = object;

@@ -144,6 +144,40 @@ TEST(LocalizerNode, StaleScansAreDroppedAndTimeGoingBackRestarts) {
   EXPECT_EQ(node.counters().stale_scans, 2);
 }
 
+TEST(LocalizerNode, NonFiniteInputIsRefusedNotSpread) {
+  const SmallWorld w;
+  LocalizerNode node(w.map, node_options(LocalizerMode::kSlamer), w.robot.lidar.mount);
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(node.on_initial_pose({kNaN, 3.0, 0.0}, {0.1, 0.1, 0.1}));
+  EXPECT_FALSE(node.on_initial_pose({2.0, 3.0, 0.0}, {0.1, kNaN, 0.1}));
+  EXPECT_FALSE(node.on_initial_pose({2.0, 3.0, 0.0}, {0.1, 0.1}));
+  node.on_odometry(1'000'000, {0.0, 0.0, 0.0});
+  node.on_odometry(1'010'000, {kNaN, 0.0, 0.0});
+  node.on_odometry(1'020'000, {0.0, std::numeric_limits<double>::infinity(), 0.0});
+  EXPECT_EQ(node.counters().invalid_odometry, 2);
+  LaserScan scan = w.scan_at({2.0, 3.0, 0.0});
+  scan.utime = 1'025'000;
+  node.on_scan(scan);
+  // Objects with NaN ends or probabilities next to a sound one.
+  LineObjectSet objects = objects_for(scan.utime);
+  objects.class_names = {"open_door", "others"};
+  LineObject sound{LineKind::kPhysical, {1.0, -1.0}, {1.0, 1.0}, 20, {0.2f, 0.8f}, 1};
+  LineObject nan_end = sound;
+  nan_end.end.x() = kNaN;
+  LineObject nan_prob = sound;
+  nan_prob.probs[0] = std::numeric_limits<float>::quiet_NaN();
+  objects.objects = {nan_end, sound, nan_prob};
+  node.on_objects(objects);
+  const std::optional<UpdateResult> result = node.poll(scan.utime);
+  ASSERT_TRUE(result.has_value());
+  EXPECT_NEAR(result->estimate.pose.x, 2.0, 0.05);
+  EXPECT_NEAR(result->estimate.pose.y, 3.0, 0.05);
+  EXPECT_EQ(result->semantic.objects.size(), 1u);  // the sound one
+  for (const Particle& p : node.particles()) {
+    ASSERT_TRUE(std::isfinite(p.log_weight) && std::isfinite(p.pose.x) && std::isfinite(p.pose.theta));
+  }
+}
+
 // Drives 0.4 m/s along +x for 2 s with scans only; returns the last estimate.
 std::optional<UpdateResult> drive_without_odometry(const SmallWorld& w, LocalizerNode* node) {
   std::optional<UpdateResult> last;
