@@ -45,7 +45,7 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
       mount_(lidar_mount),
       geometry_(map.geometry),
       field_(std::make_shared<const DistanceField>(obstacle_distance_field(map, field_reach(options))), options.lfm),
-      free_distance_(free_space_distance_field(map, field_reach(options))),
+      free_distance_(std::make_shared<const DistanceField>(free_space_distance_field(map, field_reach(options)))),
       rng_(static_cast<std::mt19937::result_type>(options.seed)) {
   if (options.particles < 1) {
     throw std::invalid_argument("the filter needs at least one particle");
@@ -61,7 +61,7 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
 }
 
 std::size_t ParticleFilter::map_memory_bytes() const {
-  std::size_t bytes = field_.distances().memory_bytes() + free_distance_.memory_bytes();
+  std::size_t bytes = field_.distances().memory_bytes() + free_distance_->memory_bytes();
   for (const auto& field : class_distances_) {
     bytes += field->memory_bytes();
   }
@@ -237,7 +237,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
       double d = far;
       if (field != kNoField) {
         const DistanceField& distances =
-            field == kFreeSpace ? free_distance_ : *class_distances_[static_cast<std::size_t>(field)];
+            field == kFreeSpace ? *free_distance_ : *class_distances_[static_cast<std::size_t>(field)];
         double sum = off_map;
         for (const Cell& cell : cells) {
           // Fields saturate at or beyond `far` (also with no cell of the class at all).

@@ -48,6 +48,7 @@ class ParticleFilter {
  public:
   // Precomputes the likelihood and distance fields of the map. Throws
   // std::invalid_argument for options that cannot work (e.g. no particles).
+  // Copies share the (immutable) fields.
   ParticleFilter(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount);
 
   void initialize(const Pose2& mean, const std::vector<double>& sigma);
@@ -89,7 +90,7 @@ class ParticleFilter {
   std::vector<std::string> map_classes_;
   std::vector<std::shared_ptr<const DistanceField>> class_distances_;  // SLAMER prior: per map class
   std::vector<LikelihoodField> class_fields_;                          // SLFM: per map class, sharing those
-  DistanceField free_distance_;                                        // for recognition classes on free space
+  std::shared_ptr<const DistanceField> free_distance_;                 // for recognition classes on free space
   std::vector<Particle> particles_;
   std::mt19937 rng_;
   int low_likelihood_scans_ = 0;
