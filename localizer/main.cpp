@@ -222,10 +222,9 @@ void resume_from_saved_pose(const LocalizerProcessConfig& config, LocalizerNode*
   try {
     const auto saved = load_options<SavedPose>(config.pose_file);
     node->on_initial_pose(saved.pose, saved.sigma);
-    char line[160];
-    std::snprintf(line, sizeof line, "resuming from the pose saved in %s: (%.3f, %.3f, %.3f)", config.pose_file.c_str(),
-                  saved.pose.x, saved.pose.y, saved.pose.theta);
-    log_line("slamer-localizer", LogLevel::kInfo, line);
+    char pose[96];
+    std::snprintf(pose, sizeof pose, "(%.3f, %.3f, %.3f)", saved.pose.x, saved.pose.y, saved.pose.theta);
+    log_line("slamer-localizer", LogLevel::kInfo, "resuming from the pose saved in " + config.pose_file + ": " + pose);
   } catch (const ConfigError& e) {
     log_line("slamer-localizer", LogLevel::kWarning,
              std::string("cannot resume: ") + e.what() + "; starting from the configured initial pose");
