@@ -95,6 +95,9 @@ void LocalizerNode::on_scan(const LaserScan& scan) {
 }
 
 void LocalizerNode::on_objects(const LineObjectSet& objects) {
+  if (!needs_objects()) {
+    return;  // LFM: scans go without waiting, so objects have nothing to join
+  }
   if (!last_objects_utime_ || objects.utime > *last_objects_utime_) {
     last_objects_utime_ = objects.utime;
   }

@@ -55,6 +55,11 @@ TEST(LocalizerNode, OdometryBetweenScansMovesTheEstimate) {
   EXPECT_NEAR(last->estimate.pose.y, 3.0, 0.05);
   EXPECT_EQ(node.counters().scans_without_odometry, 0);
   EXPECT_FALSE(node.health().odometry_missing);
+  // LFM does not wait for objects, so the recognizer's output is not "stale" input to it.
+  node.on_objects(objects_for(last->semantic.utime));
+  EXPECT_EQ(node.counters().stale_objects, 0);
+  EXPECT_EQ(node.counters().scans_without_objects, 0);
+  EXPECT_FALSE(node.health().objects_missing);
 }
 
 TEST(LocalizerNode, ScansWaitInOrderForTheirObjects) {
