@@ -1,7 +1,6 @@
 // slamer-localizer: LIDAR + ODOMETRY + LINE_OBJECTS in; POSE, SEMANTIC_OBJECTS
 // and PARTICLES out. Live on LCM, or offline from a log (--replay IN --out OUT).
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -121,7 +120,6 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
   LocalizerNode node = make_node(config);
   int64_t last_particles = std::numeric_limits<int64_t>::min() / 2;
   int64_t scans = 0;
-  const bool terminal = isatty(STDERR_FILENO) != 0;
   const LocalizerChannels& ch = config.channels;
   // The log's timestamps (receive times) are the clock: a scan waits for its
   // objects as it did live, so a recorded run replays the way it ran.
@@ -133,7 +131,8 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
     }
   };
   const ReplayStats stats = replay_log(
-      in, out, {ch.lidar, ch.odometry, ch.line_objects, ch.initial_pose}, {ch.pose, ch.semantic_objects, ch.particles},
+      "slamer-localizer", in, out, {ch.lidar, ch.odometry, ch.line_objects, ch.initial_pose},
+      {ch.pose, ch.semantic_objects, ch.particles},
       [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t timestamp,
           std::vector<OutputEvent>* outputs) {
         if (channel == ch.odometry) {
@@ -160,18 +159,7 @@ int run_replay(const LocalizerProcessConfig& config, const std::string& in, cons
         }
         publish_ready(outputs, timestamp);
       },
-      [&](double fraction) {
-        if (terminal) {
-          std::fprintf(stderr, "\rslamer-localizer: %3.0f%%", 100.0 * fraction);
-        }
-      },
       [&](std::vector<OutputEvent>* outputs) { publish_ready(outputs, std::numeric_limits<int64_t>::max()); });
-  if (terminal) {
-    std::fprintf(stderr, "\n");
-  }
-  if (!stats.log_problems.empty()) {
-    log_line("slamer-localizer", LogLevel::kWarning, stats.log_problems);
-  }
   const NodeCounters& c = node.counters();
   log_line("slamer-localizer", LogLevel::kInfo,
            "replayed " + std::to_string(scans) + " scans of " + in + " into " + out + " (" +

@@ -1,8 +1,4 @@
 // slamer-recognizer: LIDAR in, LINE_OBJECTS out, live or from a log.
-#include <unistd.h>
-
-#include <cstdio>
-
 #include "common/process/convert.hpp"
 #include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
@@ -89,9 +85,8 @@ int run_replay(const RecognizerProcessConfig& config, const std::string& in, con
   ScanOrder order;
   int64_t bad = 0;
   int64_t dropped = 0;
-  const bool terminal = isatty(STDERR_FILENO) != 0;
   const ReplayStats stats = replay_log(
-      in, out, {config.lidar_channel}, {config.line_objects_channel},
+      "slamer-recognizer", in, out, {config.lidar_channel}, {config.line_objects_channel},
       [&](const std::string&, const std::vector<uint8_t>& bytes, int64_t, std::vector<OutputEvent>* outputs) {
         laser_scan_t scan{};
         int64_t missed = 0;
@@ -106,18 +101,7 @@ int run_replay(const RecognizerProcessConfig& config, const std::string& in, con
         }
         outputs->push_back(encode_event(config.line_objects_channel,
                                         to_line_objects_message(recognizer.recognize(from_message(scan)), scan.frame)));
-      },
-      [&](double fraction) {
-        if (terminal) {
-          std::fprintf(stderr, "\rslamer-recognizer: %3.0f%%", 100.0 * fraction);
-        }
       });
-  if (terminal) {
-    std::fprintf(stderr, "\n");
-  }
-  if (!stats.log_problems.empty()) {
-    log_line("slamer-recognizer", LogLevel::kWarning, stats.log_problems);
-  }
   log_line("slamer-recognizer", LogLevel::kInfo,
            "replayed " + std::to_string(stats.events_handled) + " scans from " + in + " into " + out + " (" +
                std::to_string(bad) + " undecodable, " + std::to_string(dropped) + " out of order)");

@@ -1,5 +1,7 @@
 #include "common/process/log_replay.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
@@ -7,14 +9,14 @@
 #include <stdexcept>
 
 #include "common/process/event_log.hpp"
+#include "common/process/log.hpp"
 
 namespace slamer {
 
-ReplayStats replay_log(const std::string& in_path, const std::string& out_path, const std::set<std::string>& channels,
-                       const std::set<std::string>& replaced,
+ReplayStats replay_log(const std::string& program, const std::string& in_path, const std::string& out_path,
+                       const std::set<std::string>& channels, const std::set<std::string>& replaced,
                        const std::function<void(const std::string&, const std::vector<uint8_t>&, int64_t,
                                                 std::vector<OutputEvent>*)>& handle,
-                       const std::function<void(double)>& progress,
                        const std::function<void(std::vector<OutputEvent>*)>& finish) {
   if (std::filesystem::weakly_canonical(in_path) == std::filesystem::weakly_canonical(out_path)) {
     throw std::runtime_error("the output log must not be the input log " + in_path);
@@ -36,6 +38,7 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
     }
     ++stats.events_out;
   };
+  const bool terminal = isatty(STDERR_FILENO) != 0;
   std::vector<OutputEvent> outputs;
   int64_t last_timestamp = 0;
   while (const std::optional<LogEvent> event = in.next()) {
@@ -58,11 +61,16 @@ ReplayStats replay_log(const std::string& in_path, const std::string& out_path, 
         write(output.channel, output.bytes.data(), static_cast<int32_t>(output.bytes.size()), event->timestamp);
       }
     }
-    if (progress && stats.events_in % 5000 == 0) {
-      progress(in.fraction_read());
+    if (terminal && stats.events_in % 5000 == 0) {
+      std::fprintf(stderr, "\r%s: %3.0f%%", program.c_str(), 100.0 * in.fraction_read());
     }
   }
-  stats.log_problems = in.problems();
+  if (terminal) {
+    std::fprintf(stderr, "\n");
+  }
+  if (const std::string problems = in.problems(); !problems.empty()) {
+    log_line(program, LogLevel::kWarning, problems);
+  }
   if (finish) {
     outputs.clear();
     finish(&outputs);

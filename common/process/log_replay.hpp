@@ -28,20 +28,19 @@ struct ReplayStats {
   int64_t events_handled = 0;
   int64_t events_out = 0;
   int64_t handler_errors = 0;
-  std::string log_problems;  // "" for an intact input log, else one line (EventLogReader::problems)
 };
 
 // `handle` gets (channel, bytes, timestamp) of each event on `channels` and
-// appends its outputs. Damaged stretches of the input log are skipped (see
-// event_log.hpp) and reported in log_problems. Throws std::runtime_error if a log cannot be opened or
-// written. `progress` (may be empty) is called with the fraction read.
-// `finish` (may be empty) appends what is still pending at the end of the log;
-// it is written with the last event's timestamp.
-ReplayStats replay_log(const std::string& in_path, const std::string& out_path, const std::set<std::string>& channels,
-                       const std::set<std::string>& replaced,
+// appends its outputs. `finish` (may be empty) appends what is still pending
+// at the end of the log; it is written with the last event's timestamp.
+// On a terminal, the percentage read goes to stderr as "PROGRAM: NN%";
+// damaged stretches of the input log are skipped (event_log.hpp) and logged
+// as one warning of `program`. Throws std::runtime_error if a log cannot be
+// opened or written.
+ReplayStats replay_log(const std::string& program, const std::string& in_path, const std::string& out_path,
+                       const std::set<std::string>& channels, const std::set<std::string>& replaced,
                        const std::function<void(const std::string&, const std::vector<uint8_t>&, int64_t,
                                                 std::vector<OutputEvent>*)>& handle,
-                       const std::function<void(double)>& progress,
                        const std::function<void(std::vector<OutputEvent>*)>& finish = {});
 
 template <class Msg>
