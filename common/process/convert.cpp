@@ -92,6 +92,24 @@ LineObjectSet from_message(const semantic_objects_t& message) {
   return set;
 }
 
+namespace {
+
+// The fields line_object_t and semantic_object_t share: kind, ends, probabilities.
+template <class ObjectMsg>
+ObjectMsg object_fields(const LineObject& o) {
+  ObjectMsg object;
+  object.kind = static_cast<int8_t>(o.kind);
+  object.x1 = o.start.x();
+  object.y1 = o.start.y();
+  object.x2 = o.end.x();
+  object.y2 = o.end.y();
+  object.probs = o.probs;
+  object.nclasses = static_cast<int32_t>(o.probs.size());
+  return object;
+}
+
+}  // namespace
+
 line_objects_t to_line_objects_message(const LineObjectSet& set, const std::string& frame) {
   line_objects_t message;
   message.utime = set.utime;
@@ -100,15 +118,8 @@ line_objects_t to_line_objects_message(const LineObjectSet& set, const std::stri
   message.class_names = set.class_names;
   message.nclasses = static_cast<int32_t>(set.class_names.size());
   for (const LineObject& o : set.objects) {
-    line_object_t object;
-    object.kind = static_cast<int8_t>(o.kind);
-    object.x1 = o.start.x();
-    object.y1 = o.start.y();
-    object.x2 = o.end.x();
-    object.y2 = o.end.y();
+    line_object_t object = object_fields<line_object_t>(o);
     object.npoints = o.npoints;
-    object.probs = o.probs;
-    object.nclasses = static_cast<int32_t>(o.probs.size());
     message.objects.push_back(object);
   }
   message.nobjects = static_cast<int32_t>(message.objects.size());
@@ -121,14 +132,7 @@ semantic_objects_t to_semantic_objects_message(const LineObjectSet& set) {
   message.class_names = set.class_names;
   message.nclasses = static_cast<int32_t>(set.class_names.size());
   for (const LineObject& o : set.objects) {
-    semantic_object_t object;
-    object.kind = static_cast<int8_t>(o.kind);
-    object.x1 = o.start.x();
-    object.y1 = o.start.y();
-    object.x2 = o.end.x();
-    object.y2 = o.end.y();
-    object.probs = o.probs;
-    object.nclasses = static_cast<int32_t>(o.probs.size());
+    semantic_object_t object = object_fields<semantic_object_t>(o);
     object.label = o.label;
     message.objects.push_back(object);
   }
