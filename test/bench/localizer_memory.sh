@@ -5,6 +5,10 @@
 #   test/bench/localizer_memory.sh [BUILD_DIR] [WORK_DIR]
 # Prints one line per mode: peak RSS (MB), wall time, and the mean position error.
 set -euo pipefail
+if [[ ! -x /usr/bin/time ]]; then
+  echo "localizer_memory.sh: needs GNU time for the peak RSS (apt-get install time)" >&2
+  exit 1
+fi
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 build="$(cd "${1:-$repo/build}" && pwd)"
 work="${2:-$(mktemp -d)}"
@@ -56,6 +60,6 @@ for map in "$repo/config/maps/paper_indoor/map.yaml" "$work/big/map.yaml"; do
     error=$("$bin/slamer-eval" --config "$repo/config/eval.yaml" --world "$repo/config/worlds/paper_indoor.yaml" \
       "$out" 2>/dev/null | awk '/Pose error/ {print $7; exit}')
     printf '%-50s %-6s peak RSS %6.1f MB  %6.1f s  mean error %s cm\n' "$(basename "$(dirname "$map")")/$(basename "$map")" \
-      "$mode" "$(echo "$rss_kb / 1024" | bc -l)" "$seconds" "${error:-?}"
+      "$mode" "$(awk -v kb="$rss_kb" 'BEGIN {print kb / 1024}')" "$seconds" "${error:-?}"
   done
 done
