@@ -8,6 +8,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "common/process/event_log.hpp"
+#include "test/support/child_process.hpp"
 
 namespace slamer {
 namespace {
@@ -44,11 +45,6 @@ WrittenLog write_log(const std::string& name) {
   return log;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 void write_file(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
@@ -83,7 +79,7 @@ TEST(EventLogReader, ReadsWhatLcmWroteExactly) {
 
 TEST(EventLogReader, SkipsADamagedStretchAndReadsOn) {
   const WrittenLog log = write_log("slamer_event_log_damaged.lcm");
-  std::string bytes = read_file(log.path);
+  std::string bytes = test::read_file(log.path);
   // Zero 30 bytes from the middle of event 20's header into its channel name.
   std::fill_n(bytes.begin() + static_cast<std::ptrdiff_t>(log.offsets[20] + 10), 30, '\0');
   // And a channel name longer than LCM's reader accepts (it asserts) in event 30's header.
@@ -108,7 +104,7 @@ TEST(EventLogReader, SkipsADamagedStretchAndReadsOn) {
 
 TEST(EventLogReader, ALogCutOffWhileWrittenKeepsEveryWholeEvent) {
   const WrittenLog log = write_log("slamer_event_log_cut.lcm");
-  const std::string bytes = read_file(log.path);
+  const std::string bytes = test::read_file(log.path);
   for (const std::size_t cut : {log.offsets[40] + 3, log.offsets[40] + 20, log.offsets[40] + 100}) {
     write_file(log.path, bytes.substr(0, cut));
     EventLogReader reader(log.path);

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iterator>
 #include <map>
 #include <set>
 
@@ -14,6 +13,7 @@
 #include "common/robot/robot_options.hpp"
 #include "localizer/localizer_config.hpp"
 #include "recognizer/recognizer_config.hpp"
+#include "test/support/child_process.hpp"
 #include "tools/eval/eval_config.hpp"
 #include "tools/sim/floor_plan.hpp"
 #include "tools/sim/sim_config.hpp"
@@ -82,11 +82,6 @@ TEST(ShippedConfigs, EveryFileLoadsWithItsProgramsLoader) {
   }
 }
 
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // The committed map files are exactly what their plan renders to.
 TEST(ShippedConfigs, BundledMapsMatchTheirPlans) {
   for (const std::string name : {"small_room", "paper_indoor"}) {
@@ -95,7 +90,7 @@ TEST(ShippedConfigs, BundledMapsMatchTheirPlans) {
     std::filesystem::create_directories(out);
     write_floor_plan_map(load_options<FloorPlan>((dir / "plan.yaml").string()), out.string());
     for (const char* file : {"map.pgm", "semantic.png", "map.yaml"}) {
-      EXPECT_EQ(read_bytes(out / file), read_bytes(dir / file))
+      EXPECT_EQ(test::read_file(out / file), test::read_file(dir / file))
           << "config/maps/" << name << "/" << file << " is stale: run slamer-make-map plan.yaml . in its folder";
     }
     std::filesystem::remove_all(out);

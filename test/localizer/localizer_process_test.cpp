@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <iterator>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 
@@ -15,11 +14,6 @@ namespace {
 
 const std::string kSource = SLAMER_SOURCE_DIR;
 const std::string kBinary = SLAMER_BINARY_DIR;
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 int run(const std::string& program, const std::vector<std::string>& args, std::string* err = nullptr) {
   test::ChildProcess child(test::binary_path(program), args);
@@ -66,7 +60,7 @@ TEST(SlamerLocalizer, ReplayIsDeterministicAndLocalizesTheSmallWorld) {
         << err;
     outputs.push_back(out);
   }
-  EXPECT_TRUE(read_bytes(outputs[0]) == read_bytes(outputs[1])) << "two replays with one seed differ";
+  EXPECT_TRUE(test::read_file(outputs[0]) == test::read_file(outputs[1])) << "two replays with one seed differ";
   const auto counts = channel_counts(outputs[0]);
   EXPECT_EQ(counts.at("POSE"), counts.at("LIDAR"));
   EXPECT_EQ(counts.at("SEMANTIC_OBJECTS"), counts.at("LIDAR"));
@@ -89,7 +83,7 @@ TEST(SlamerLocalizer, ReplayIsDeterministicAndLocalizesTheSmallWorld) {
   // A damaged copy (a stretch of zeros in the middle): replayed around the damage, said in one line.
   const std::string damaged = kBinary + "/loc_damaged.lcm";
   const std::string damaged_out = kBinary + "/loc_damaged_out.lcm";
-  std::string bytes = read_bytes(recognized);
+  std::string bytes = test::read_file(recognized);
   std::fill_n(bytes.begin() + static_cast<std::ptrdiff_t>(bytes.size() / 2), 3000, '\0');
   std::ofstream(damaged, std::ios::binary) << bytes;
   std::string err;

@@ -6,7 +6,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <set>
@@ -23,11 +22,6 @@ namespace {
 
 const std::string kSource = SLAMER_SOURCE_DIR;
 const std::string kBinary = SLAMER_BINARY_DIR;
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // A short simulated log of the small world (8 s, 320 scans).
 std::string short_log(const std::string& name) {
@@ -85,7 +79,7 @@ TEST(SlamerRecognizer, ReplayIsDeterministicAndCopiesEveryChannel) {
                            {"--config", kSource + "/config/recognizer.yaml", "--replay", in, "--out", out});
     ASSERT_EQ(rec.wait(120.0), std::optional<int>(0)) << rec.stderr_text();
   }
-  EXPECT_TRUE(read_bytes(a) == read_bytes(b)) << "two replays differ";
+  EXPECT_TRUE(test::read_file(a) == test::read_file(b)) << "two replays differ";
   const auto input = utimes_by_channel(in);
   const auto output = utimes_by_channel(a);
   for (const auto& [channel, utimes] : input) {

@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 
@@ -12,11 +11,6 @@
 
 namespace slamer {
 namespace {
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 int run_sim(const std::string& seed, const std::string& out) {
   test::ChildProcess sim(test::binary_path("slamer-sim"),
@@ -36,10 +30,10 @@ TEST(SlamerSim, LogsAreByteIdenticalForASeed) {
   ASSERT_EQ(run_sim("5", a), 0);
   ASSERT_EQ(run_sim("5", b), 0);
   ASSERT_EQ(run_sim("6", c), 0);
-  const std::string bytes = read_bytes(a);
+  const std::string bytes = test::read_file(a);
   EXPECT_GT(bytes.size(), 1'000'000u);
-  EXPECT_TRUE(bytes == read_bytes(b)) << "two runs with seed 5 differ";
-  EXPECT_FALSE(bytes == read_bytes(c)) << "seeds 5 and 6 gave the same log";
+  EXPECT_TRUE(bytes == test::read_file(b)) << "two runs with seed 5 differ";
+  EXPECT_FALSE(bytes == test::read_file(c)) << "seeds 5 and 6 gave the same log";
 
   lcm::LogFile log(a, "r");
   std::map<std::string, int> counts;

@@ -18,16 +18,13 @@
 extern char** environ;
 
 namespace slamer::test {
-namespace {
 
 std::string read_file(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
 }
-
-}  // namespace
 
 ChildProcess::ChildProcess(const std::string& program, const std::vector<std::string>& args) {
   char pattern[] = "/tmp/slamer_child_XXXXXX";

@@ -37,4 +37,6 @@ std::string unique_lcm_url(int salt);
 
 std::string binary_path(const std::string& name);  // build-tree bin/NAME
 
+std::string read_file(const std::string& path);  // its bytes; "" if it cannot be read
+
 }  // namespace slamer::test
