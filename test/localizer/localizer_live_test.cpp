@@ -61,6 +61,15 @@ class Bus {
       lcm_.handleTimeout(10);
     }
   }
+  // Waits for a PROCESS_STATUS of slamer-localizer (it is subscribed and running); false after `timeout` s.
+  bool wait_until_running(double timeout) {
+    const std::size_t seen = statuses.size();
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+    while (statuses.size() == seen && std::chrono::steady_clock::now() < end) {
+      lcm_.handleTimeout(10);
+    }
+    return statuses.size() > seen;
+  }
   // Scans of the small room at `pose` (and unchanging odometry unless `odometry` is false) at
   // 20 Hz for `seconds`, handling what comes back in between.
   void drive(const SmallWorld& w, const Pose2& pose, double seconds, bool odometry = true) {
@@ -143,7 +152,7 @@ TEST(SlamerLocalizerLive, InitialPoseFaultsAndResumingFromTheSavedPose) {
 
   {  // 1. INITIAL_POSE, stale scans, no recognizer, then no odometry; a clean stop.
     test::ChildProcess localizer(test::binary_path("slamer-localizer"), {"--lcm-url", url, "--config", config});
-    bus.listen(1.0);
+    ASSERT_TRUE(bus.wait_until_running(60.0)) << localizer.stderr_text();
     initial_pose_t initial{};
     initial.utime = wall_utime();
     initial.x = truth.x;
@@ -180,7 +189,7 @@ TEST(SlamerLocalizerLive, InitialPoseFaultsAndResumingFromTheSavedPose) {
   {  // 2. A restart resumes there, without INITIAL_POSE; then a SIGKILL.
     bus.poses.clear();
     test::ChildProcess localizer(test::binary_path("slamer-localizer"), {"--lcm-url", url, "--config", config});
-    bus.listen(1.0);
+    ASSERT_TRUE(bus.wait_until_running(60.0)) << localizer.stderr_text();
     bus.drive(w, truth, 1.5);
     ASSERT_FALSE(bus.poses.empty()) << localizer.stderr_text();
     EXPECT_LT(distance(bus.poses.front(), truth), 0.15) << "did not resume from the saved pose";
@@ -197,7 +206,7 @@ TEST(SlamerLocalizerLive, InitialPoseFaultsAndResumingFromTheSavedPose) {
     std::ofstream(pose_file) << "utime: 12\npose: [2.5, oops\n";
     bus.poses.clear();
     test::ChildProcess localizer(test::binary_path("slamer-localizer"), {"--lcm-url", url, "--config", config});
-    bus.listen(1.0);
+    ASSERT_TRUE(bus.wait_until_running(60.0)) << localizer.stderr_text();
     bus.drive(w, {1.5, 3.0, 0.0}, 0.5);
     ASSERT_FALSE(bus.poses.empty()) << localizer.stderr_text();
     EXPECT_LT(distance(bus.poses.back(), {1.5, 3.0, 0.0}), 0.1);
