@@ -112,7 +112,9 @@ int LogBus::run() {
       fire_timers_until(event->timestamp);
       now_ = event->timestamp;
     }
-    if (advertised().count(event->channel) != 0 || is_own_status(*event)) {
+    const bool left_out =
+        event->channel == options().status_channel ? is_own_status(*event) : advertised().count(event->channel) != 0;
+    if (left_out) {
       ++stats_.events_left_out;
       continue;
     }
