@@ -311,6 +311,8 @@ int main(int argc, char** argv) {
         cli.add_option("mode", "MODE", "lfm, slfm or slamer (overrides the config)");
         cli.add_option("seed", "N", "random seed (overrides the config)");
         cli.add_option("map", "FILE", "semantic map YAML (overrides the config)");
+        cli.add_option("robot", "FILE", "robot YAML, for the LiDAR mount (overrides the config)");
+        cli.add_multi_option("initial-pose", 3, "X Y THETA", "start here [m, m, rad] (overrides the config)");
         cli.add_option("replay", "IN.lcm", "offline: read this log");
         cli.add_option("out", "OUT.lcm", "offline: write the log with the results added here");
       },
@@ -332,6 +334,13 @@ int main(int argc, char** argv) {
         }
         if (cli.has("map")) {
           config.map = cli.get("map");
+        }
+        if (cli.has("robot")) {
+          config.robot = cli.get("robot");
+        }
+        if (cli.has("initial-pose")) {
+          const std::vector<double> pose = cli.get_doubles("initial-pose");
+          config.localizer.initial_pose = {pose[0], pose[1], pose[2]};
         }
         if (cli.has("replay") != cli.has("out")) {
           throw slamer::CommandLineError("--replay and --out go together");
