@@ -40,10 +40,11 @@ TEST(BenchScoring, OnePosePerScanAndTheConfusionTable) {
   const std::string text = format_poses(poses);
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 4);
   EXPECT_EQ(text.substr(0, text.find('\n')), "5.000000 0.5000 0.0000 0.00000 INITIALIZING");
-  const auto json = nlohmann::json::parse(summary_json(score, {"x.log", "lfm", 500, "all", 1, 2.0, 1.0, "cmd"}));
+  const auto json = nlohmann::json::parse(summary_json(score, {"x.log", "lfm", 500, "all", 1, 2.0, 1.0, "cmd", 0.4}));
   EXPECT_DOUBLE_EQ(json["fraction_lost"].get<double>(), 0.25);
   EXPECT_EQ(json["status_vs_error"]["LOST"]["error_above_0.5m"].get<int>(), 1);
   EXPECT_DOUBLE_EQ(json["time_per_scan_ms"]["cpu"].get<double>(), 250.0);
+  EXPECT_NEAR(json["time_per_scan_ms"]["cpu_without_startup"].get<double>(), 200.0, 1e-9);  // 0.6 s over 3 scans
   const std::string png = (std::filesystem::temp_directory_path() / "slamer_bench_plot.png").string();
   write_bench_plot(poses, score, "test", png);
   EXPECT_GT(std::filesystem::file_size(png), 1000u);

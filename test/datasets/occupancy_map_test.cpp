@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <numbers>
 
 #include "common/map/semantic_map.hpp"
 #include "tools/datasets/occupancy_map.hpp"
+#include "tools/datasets/wean_map.hpp"
 
 namespace slamer {
 namespace {
@@ -69,6 +71,45 @@ TEST(OccupancyMap, BoxRoomLoadsAsASemanticMap) {
   EXPECT_NEAR(std::remainder(map.geometry.origin.x, 0.05), 0.0, 1e-9);
   EXPECT_THROW(build_occupancy(scans, {}, options), std::invalid_argument);
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace slamer
+
+namespace slamer {
+namespace {
+
+TEST(WeanMap, ProbabilitiesOfFreeBecomeCells) {
+  const std::string excerpt = std::string(SLAMER_SOURCE_DIR) + "/test/datasets/excerpts/wean_map.dat";
+  const GridCells map = read_wean_map(excerpt);
+  ASSERT_EQ(map.geometry.width, 4);
+  ASSERT_EQ(map.geometry.height, 3);
+  EXPECT_DOUBLE_EQ(map.geometry.resolution, 0.1);
+  const auto at = [&](int x, int y) { return map.cells[map.geometry.index(x, y)]; };
+  EXPECT_EQ(at(0, 0), Occupancy::kUnknown);   // -1
+  EXPECT_EQ(at(1, 0), Occupancy::kOccupied);  // P(free) 0
+  EXPECT_EQ(at(2, 0), Occupancy::kUnknown);   // 0.5: neither
+  EXPECT_EQ(at(3, 0), Occupancy::kFree);
+  EXPECT_EQ(at(1, 1), Occupancy::kOccupied);  // 0.3
+  EXPECT_EQ(at(2, 1), Occupancy::kFree);      // 0.81
+  EXPECT_EQ(at(3, 2), Occupancy::kOccupied);  // file row 2 is grid row 2
+  const std::string dir = (std::filesystem::temp_directory_path() / "slamer_wean_map_test").string();
+  write_grid_map(map.geometry, map.cells, "test", dir);
+  const SemanticMap loaded = load_semantic_map(dir + "/map.yaml");
+  EXPECT_EQ(loaded.occupancy, map.cells);
+  std::filesystem::remove_all(dir);
+  // Truncated and corrupt files: one error naming the file and line.
+  const std::string bad = (std::filesystem::temp_directory_path() / "slamer_wean_bad.dat").string();
+  std::ofstream(bad) << "global_map[0]: 4 3\n-1 0 0.5 1\n0.9 x 0.8 1\n";
+  try {
+    read_wean_map(bad);
+    ADD_FAILURE() << "a corrupt map was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("slamer_wean_bad.dat:3: cell 1"), std::string::npos) << e.what();
+  }
+  std::ofstream(bad) << "global_map[0]: 4 3\n-1 0 0.5 1\n";
+  EXPECT_THROW(read_wean_map(bad), std::runtime_error);
+  std::filesystem::remove(bad);
 }
 
 }  // namespace

@@ -4,8 +4,8 @@
 
 #include <cstdio>
 #include <fstream>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 
 #include "common/config/config_reader.hpp"
 #include "common/process/decode.hpp"
@@ -53,6 +53,22 @@ std::string bench_localizer_config(const std::string& base_config, const BenchCo
   std::ostringstream out;
   out << "# " << base_config << " with slamer-bench's particles, beam_step, map and robot.\n" << root << "\n";
   return out.str();
+}
+
+ImportedLog first_scan_only(const ImportedLog& log) {
+  ImportedLog first;
+  if (log.scans.empty()) {
+    return first;
+  }
+  first.scans.push_back(log.scans.front());
+  first.reference.assign(log.reference.begin(), log.reference.begin() + (log.reference.empty() ? 0 : 1));
+  for (const TimedPose& p : log.odometry) {
+    if (p.utime <= log.scans.front().utime) {
+      first.odometry.push_back(p);
+    }
+  }
+  first.corrected = log.corrected;
+  return first;
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

@@ -10,6 +10,7 @@
 #include "common/geometry/se2.hpp"
 #include "common/sensors/laser_scan.hpp"
 #include "tools/datasets/bench_scoring.hpp"
+#include "tools/datasets/dataset_import.hpp"
 
 namespace slamer {
 
@@ -25,6 +26,10 @@ struct BenchConfigChanges {
 // The YAML of `base_config` with the changes applied (localizer.particles,
 // localizer.beam_step, map, robot). Throws ConfigError if it cannot be read.
 std::string bench_localizer_config(const std::string& base_config, const BenchConfigChanges& changes);
+
+// The log up to its first scan (with its reference and odometry): a localizer
+// run on it measures what starting up costs, to take out of the time per scan.
+ImportedLog first_scan_only(const ImportedLog& log);
 
 // Writes `text` to `path`; throws std::runtime_error if it cannot.
 void write_text_file(const std::string& path, const std::string& text);

@@ -68,9 +68,10 @@ struct BenchRunInfo {
   int particles = 0;
   std::string beams;
   int64_t seed = 0;
-  double wall_seconds = 0.0;  // the localizer's run
-  double cpu_seconds = 0.0;   // its user + system time
-  std::string command;        // the localizer command line
+  double wall_seconds = 0.0;         // the localizer's run
+  double cpu_seconds = 0.0;          // its user + system time
+  std::string command;               // the localizer command line
+  double startup_cpu_seconds = 0.0;  // the same on the first scan alone (loading the map, building fields)
 };
 std::string summary_json(const BenchScore& score, const BenchRunInfo& info);
 

@@ -17,6 +17,7 @@
 
 #include "common/geometry/se2.hpp"
 #include "common/map/grid_geometry.hpp"
+#include "common/map/semantic_map.hpp"
 #include "common/sensors/laser_scan.hpp"
 
 namespace slamer {
@@ -40,8 +41,13 @@ struct OccupancyCounts {
 OccupancyCounts build_occupancy(const std::vector<LaserScan>& scans, const std::vector<Pose2>& poses,
                                 const MapgenOptions& options);
 
+// The cells of the counts by the rule above.
+std::vector<Occupancy> classify_cells(const OccupancyCounts& counts, const MapgenOptions& options);
+
 // Writes map.pgm, semantic.png and map.yaml into `directory` (created if
 // missing); throws std::runtime_error if it cannot.
+void write_grid_map(const GridGeometry& geometry, const std::vector<Occupancy>& cells, const std::string& comment,
+                    const std::string& directory);
 void write_occupancy_map(const OccupancyCounts& counts, const MapgenOptions& options, const std::string& directory);
 
 // A log's scans with the reference pose at each scan's utime (exact, or
