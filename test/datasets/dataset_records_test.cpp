@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 
 #include "tools/datasets/dataset_import.hpp"
@@ -158,6 +160,32 @@ TEST(DatasetImport, MinesExcerptIntegratesTheWheelTicks) {
   EXPECT_NEAR(log.laser_mount->x, 0.145, 1e-12);
   EXPECT_FLOAT_EQ(log.scans[1].ranges[341], 2.1f);
   EXPECT_TRUE(std::isinf(log.scans[1].ranges[3]));
+}
+
+}  // namespace
+}  // namespace slamer
+
+namespace slamer {
+namespace {
+
+TEST(DatasetImport, StandingRawLogIsNotTakenForCorrected) {
+  // A raw CARMEN log of a robot standing still: each next ODOM equals the scan's pose, but comes later.
+  const std::string path = (std::filesystem::temp_directory_path() / "slamer_raw_standing.log").string();
+  {
+    std::ofstream out(path);
+    for (int k = 0; k < 5; ++k) {
+      const double t = 20.0 + 0.2 * k;
+      out << "FLASER 3 1 1 1 0.5 0.5 0.1 0.5 0.5 0.1 " << t << " h " << t << "\n";
+      out << "ODOM 0.5 0.5 0.1 0 0 0 " << t + 0.1 << " h " << t + 0.1 << "\n";
+    }
+  }
+  const ImportedLog log = import_dataset(path, {});
+  EXPECT_FALSE(log.corrected);
+  EXPECT_TRUE(log.reference.empty());
+  ASSERT_EQ(log.odometry.size(), 5u);
+  EXPECT_EQ(log.odometry[0].utime, 20'100'000);  // the ODOM lines' own times
+  EXPECT_EQ(log.scans[4].utime, 20'800'000);
+  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -22,6 +22,6 @@ for log in aces csail freiburg-079; do
     dir="$out/$log-$mode-p$particles-b$beams-s$seed"
     build/bin/slamer-bench --carmen "$data/$log-corrected.log.gz" --particles "$particles" --beams "$beams" \
       --mode "$mode" --seed "$seed" --out "$dir" 2>"$dir.stderr" || { echo "$log seed $seed: failed, see $dir.stderr"; continue; }
-    printf '%-13s seed %s: %s\n' "$log" "$seed" "$(grep -o '[0-9]* scans: position error.*CPU)' "$dir.stderr")"
+    printf '%-13s seed %s: %s\n' "$log" "$seed" "$(grep -o '[0-9]* scans: position error.*per scan[^;]*' "$dir.stderr")"
   done
 done

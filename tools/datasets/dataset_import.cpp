@@ -47,8 +47,12 @@ bool looks_corrected(const std::vector<DatasetRecord>& records) {
   int matching = 0;
   for (std::size_t i = 0; i + 1 < records.size(); ++i) {
     if (records[i].kind == RecordKind::kScan && records[i + 1].kind == RecordKind::kOdometry) {
+      // Re-anchoring: the scan's own pose, stamped 0 or junk (a raw log's next ODOM is later).
       ++checked;
-      matching += same_pose(records[i + 1].pose, reference_of(records[i])) ? 1 : 0;
+      matching += same_pose(records[i + 1].pose, reference_of(records[i])) &&
+                          records[i + 1].scan.sensor_utime < records[i].scan.sensor_utime
+                      ? 1
+                      : 0;
     }
   }
   return checked > 0 && matching * 10 >= checked * 9;

@@ -8,8 +8,9 @@
 // (last ODOM before scan k+1). The raw stream is rebuilt by chaining these
 // increments from the last ODOM before the first scan (the log's own odometry
 // frame); every ODOM line between two scans becomes raw_k (+) inv(first ODOM
-// after k) (+) ODOM. Such logs are recognized by their first ODOM after each
-// scan equalling the scan's pose (auto), or forced with `corrected`.
+// after k) (+) ODOM. Such logs are recognized (auto) by the first ODOM after
+// at least 90 % of the scans equalling the scan's pose with an earlier time
+// (GMapping stamps it 0 or junk), or forced with `corrected`.
 //
 // Time: every message gets a strictly increasing `utime`, and a scan keeps
 // the log's own time in `sensor_utime`.
