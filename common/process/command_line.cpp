@@ -78,8 +78,8 @@ bool CommandLine::parse(int argc, const char* const argv[], std::ostream& help_o
       given_[name] = "1";
     } else if (it->second.value_count > 1) {
       if (equals != std::string::npos || i + static_cast<int>(it->second.value_count) >= argc) {
-        throw CommandLineError("option '--" + name + "' needs " + std::to_string(it->second.value_count) +
-                               " values " + it->second.value_name);
+        throw CommandLineError("option '--" + name + "' needs " + std::to_string(it->second.value_count) + " values " +
+                               it->second.value_name);
       }
       std::string values;
       for (std::size_t k = 0; k < it->second.value_count; ++k) {

@@ -33,6 +33,7 @@ class CommandLine {
   // Returns false when --help was given (the usage has been written to help_out).
   bool parse(int argc, const char* const argv[], std::ostream& help_out);
 
+  bool declares(const std::string& name) const { return declared_.count(name) != 0; }
   bool has(const std::string& name) const;         // given on the command line
   std::string get(const std::string& name) const;  // value given, else the default
   double get_double(const std::string& name) const;

@@ -3,8 +3,8 @@
 #include <chrono>
 #include <filesystem>
 
-#include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
+#include "common/process/process_main.hpp"
 #include "tools/datasets/bench_files.hpp"
 #include "tools/datasets/dataset_lcm.hpp"
 #include "tools/datasets/occupancy_map.hpp"

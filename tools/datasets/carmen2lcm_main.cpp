@@ -1,8 +1,8 @@
 // slamer-carmen2lcm: a recorded dataset (CARMEN, CMU Wean Hall or Mines) to an LCM log.
 #include <string>
 
-#include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
+#include "common/process/process_main.hpp"
 #include "tools/datasets/dataset_lcm.hpp"
 
 namespace {

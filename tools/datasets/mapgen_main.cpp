@@ -1,8 +1,8 @@
 // slamer-mapgen: a map_server map from a log's LIDAR scans at its reference poses.
 #include <string>
 
-#include "common/process/lcm_process.hpp"
 #include "common/process/log.hpp"
+#include "common/process/process_main.hpp"
 #include "common/robot/robot_options.hpp"
 #include "tools/datasets/occupancy_map.hpp"
 #include "tools/datasets/wean_map.hpp"
