@@ -77,6 +77,11 @@ bool LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>
   return true;
 }
 
+void LocalizerNode::restart_odometry() {
+  odometry_.clear();
+  last_odometry_used_.reset();
+}
+
 void LocalizerNode::on_scan(const LaserScan& scan, int64_t arrival_utime) {
   last_scan_arrival_ = arrival_utime;
   switch (scan_order_.check(scan.utime)) {

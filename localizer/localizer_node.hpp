@@ -44,6 +44,10 @@ class LocalizerNode {
   void on_odometry(int64_t utime, const Pose2& pose);
   // Returns false (and changes nothing) for a non-finite pose or sigma.
   bool on_initial_pose(const Pose2& pose, const std::vector<double>& sigma);
+  // The odometry jumped (a driver restart, a glitch): the step is not
+  // integrated; the next odometry is the new reference.
+  void restart_odometry();
+  bool on_map(double x, double y) const { return filter_.geometry().cell_at({x, y}).has_value(); }
   // `arrival_utime`: when the scan reached the process, in the clock `now` of
   // poll() is given in. A scan waits for its objects measured from its
   // arrival, so a log played live (old utimes, new arrival times) waits as it did.

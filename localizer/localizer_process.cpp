@@ -1,6 +1,9 @@
 #include "localizer/localizer_process.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "common/process/convert.hpp"
@@ -12,11 +15,27 @@
 
 namespace slamer {
 
-LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& config, LocalizerNode node, bool keep_pose)
+namespace {
+
+InputLimits limits_of(const RobotOptions& robot) {
+  InputLimits limits;
+  limits.max_beams = robot.lidar.beams;
+  limits.max_speed = robot.base.max_speed;
+  limits.max_yaw_rate = robot.base.max_yaw_rate;
+  return limits;
+}
+
+}  // namespace
+
+LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& config, const RobotOptions& robot,
+                                   LocalizerNode node, bool keep_pose)
     : bus_(bus),
       config_(config),
       node_(std::move(node)),
       pose_keeper_(keep_pose ? config.pose_file : ""),
+      limits_(limits_of(robot)),
+      scan_time_(limits_),
+      odometry_time_(limits_),
       last_particles_utime_(std::numeric_limits<int64_t>::min() / 2) {
   const LocalizerChannels& ch = config_.channels;
   std::string note;
@@ -26,24 +45,14 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
   if (!note.empty()) {
     bus_.log_info(note);
   }
-  bus_.subscribe<odometry_t>(ch.odometry, [this](const odometry_t& m, const ReceiveInfo&) {
-    node_.on_odometry(m.utime, {m.x, m.y, m.theta});
-  });
-  bus_.subscribe<laser_scan_t>(ch.lidar, [this](const laser_scan_t& m, const ReceiveInfo& info) {
-    node_.on_scan(from_message(m), info.receive_utime);
-    publish_ready();
-  });
+  bus_.subscribe<odometry_t>(ch.odometry, [this](const odometry_t& m, const ReceiveInfo&) { on_odometry(m); });
+  bus_.subscribe<laser_scan_t>(ch.lidar, [this](const laser_scan_t& m, const ReceiveInfo& info) { on_scan(m, info); });
   bus_.subscribe<line_objects_t>(ch.line_objects, [this](const line_objects_t& m, const ReceiveInfo&) {
     node_.on_objects(from_message(m));
     publish_ready();
   });
-  bus_.subscribe<initial_pose_t>(ch.initial_pose, [this](const initial_pose_t& m, const ReceiveInfo&) {
-    if (!node_.on_initial_pose({m.x, m.y, m.theta}, sigma_of_covariance(m.cov))) {
-      bus_.log_warning("INITIAL_POSE ignored: " + describe(m));
-      return;
-    }
-    bus_.log_info("initial pose set: " + describe(m));
-  });
+  bus_.subscribe<initial_pose_t>(ch.initial_pose,
+                                 [this](const initial_pose_t& m, const ReceiveInfo&) { on_initial_pose(m); });
   for (const std::string& output : {ch.pose, ch.semantic_objects, ch.particles}) {
     bus_.advertise(output);
   }
@@ -58,6 +67,14 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
                          drops([](const NodeCounters& c) { return c.stale_objects; }));
   health.add_drop_source(ch.initial_pose, channel_stats_t::SUBSCRIBED,
                          drops([](const NodeCounters& c) { return c.invalid_initial_poses; }));
+  for (const std::string& input : {ch.lidar, ch.odometry, ch.initial_pose}) {
+    health.add_drop_source(input, channel_stats_t::SUBSCRIBED, [this, input] { return refused_.total(input); });
+  }
+  bus_.every(1.0, [this] {
+    if (const std::string summary = refused_.take_summary(); !summary.empty()) {
+      bus_.log_warning(summary);
+    }
+  });
 
   // A scan whose objects do not come is processed without them after objects_wait.
   bus_.every(0.01, [this] { publish_ready(); });
@@ -79,6 +96,82 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
   if (pose_keeper_.enabled()) {
     bus_.every(config_.pose_save_period, [this] { save_pose(); });
   }
+}
+
+void LocalizerProcess::refuse(const std::string& channel, const std::string& reason) {
+  refused_.count(channel, reason);
+}
+
+void LocalizerProcess::on_scan(const laser_scan_t& message, const ReceiveInfo& info) {
+  const LaserScan scan = from_message(message);
+  if (const std::string problem = scan_problem(scan, limits_); !problem.empty()) {
+    refuse(config_.channels.lidar, problem);
+    return;
+  }
+  switch (scan_time_.check(scan.utime)) {
+    case TimeVerdict::kRefuse:
+      refuse(config_.channels.lidar, "utime far from the stream's (" + std::to_string(scan.utime) + ")");
+      return;
+    case TimeVerdict::kMoved:
+      bus_.log_warning(config_.channels.lidar + "'s time moved to " + std::to_string(scan.utime) +
+                       " (several scans agree): following it");
+      break;
+    case TimeVerdict::kAccept:
+      break;
+  }
+  node_.on_scan(scan, info.receive_utime);
+  publish_ready();
+}
+
+void LocalizerProcess::on_odometry(const odometry_t& m) {
+  const std::string& channel = config_.channels.odometry;
+  const Pose2 pose{m.x, m.y, m.theta};
+  if (!std::isfinite(m.x) || !std::isfinite(m.y) || !std::isfinite(m.theta) || m.utime <= 0) {
+    refuse(channel, "not a finite pose at a time");  // one NaN would carry into every particle
+    return;
+  }
+  switch (odometry_time_.check(m.utime)) {
+    case TimeVerdict::kRefuse:
+      refuse(channel, "utime far from the stream's (" + std::to_string(m.utime) + ")");
+      return;
+    case TimeVerdict::kMoved:
+      bus_.log_warning(channel + "'s time moved to " + std::to_string(m.utime) +
+                       " (several messages agree): a new reference");
+      node_.restart_odometry();
+      break;
+    case TimeVerdict::kAccept:
+      if (last_odometry_) {
+        const auto& [from_utime, from] = *last_odometry_;
+        if (const std::string jump = odometry_step_problem(from, from_utime, pose, m.utime, limits_); !jump.empty()) {
+          refuse(channel, jump + ": not integrated, a new reference");
+          node_.restart_odometry();
+        }
+      }
+      break;
+  }
+  last_odometry_ = {m.utime, pose};
+  node_.on_odometry(m.utime, pose);
+}
+
+void LocalizerProcess::on_initial_pose(const initial_pose_t& m) {
+  const std::string& channel = config_.channels.initial_pose;
+  std::array<double, 9> covariance{};
+  std::copy(std::begin(m.cov), std::end(m.cov), covariance.begin());
+  const Pose2 pose{m.x, m.y, m.theta};
+  std::string problem = initial_pose_problem(pose, covariance, std::isfinite(m.x) && node_.on_map(m.x, m.y));
+  if (problem.empty() && last_initial_pose_ &&
+      bus_.now() - *last_initial_pose_ < static_cast<int64_t>(limits_.initial_pose_period * 1e6)) {
+    problem = "more than one per " + std::to_string(limits_.initial_pose_period).substr(0, 3) + " s";
+  }
+  if (!problem.empty()) {
+    refuse(channel, problem);
+    return;
+  }
+  if (!node_.on_initial_pose(pose, sigma_of_covariance(m.cov))) {
+    return;  // counted by the node
+  }
+  last_initial_pose_ = bus_.now();
+  bus_.log_info("initial pose set: " + describe(m));
 }
 
 void LocalizerProcess::publish_ready() {

@@ -14,6 +14,10 @@
 namespace slamer {
 namespace {
 
+RobotOptions load_robot(const LocalizerProcessConfig& config) {
+  return config.robot.empty() ? RobotOptions{} : load_options<RobotOptions>(config.robot);
+}
+
 // The node with the map's fields built; the map itself is freed on return.
 LocalizerNode make_node(const LocalizerProcessConfig& config) {
   if (config.map.empty()) {
@@ -23,8 +27,7 @@ LocalizerNode make_node(const LocalizerProcessConfig& config) {
   for (const std::string& warning : map.warnings) {
     log_line("slamer-localizer", LogLevel::kWarning, warning);
   }
-  const RobotOptions robot = config.robot.empty() ? RobotOptions{} : load_options<RobotOptions>(config.robot);
-  LocalizerNode node(map, config.localizer, robot.lidar.mount);
+  LocalizerNode node(map, config.localizer, load_robot(config).lidar.mount);
   char line[200];
   std::snprintf(line, sizeof line, "map %d x %d cells at %.3f m: distance fields %.1f MB", map.geometry.width,
                 map.geometry.height, map.geometry.resolution, static_cast<double>(node.map_memory_bytes()) / 1e6);
@@ -66,7 +69,7 @@ int run(const CommandLine& cli) {
   const LocalizerProcessConfig config = configure(cli);
   LocalizerNode node = make_node(config);
   const std::unique_ptr<Bus> bus = open_bus(cli, "slamer-localizer", config.process);
-  LocalizerProcess process(*bus, config, std::move(node), bus->is_live());
+  LocalizerProcess process(*bus, config, load_robot(config), std::move(node), bus->is_live());
   const int code = bus->run();
   const NodeCounters& c = process.node().counters();
   rusage usage{};

@@ -64,6 +64,7 @@ class ParticleFilter {
   const std::vector<Particle>& particles() const { return particles_; }
   // Bytes held by the map's distance fields.
   std::size_t map_memory_bytes() const;
+  const GridGeometry& geometry() const { return geometry_; }
   PoseEstimate estimate() const;
 
   // The per-object SLAMER log term of a pose (sum over classes of recognition

@@ -44,6 +44,12 @@ LogBus::LogBus(std::string name, const std::string& in_path, const std::string& 
     throw std::runtime_error("the output log must not be the input log " + in_path);
   }
   in_ = std::make_unique<EventLogReader>(in_path);
+  first_ = in_->next();
+  if (!first_) {
+    throw std::runtime_error(in_path + (in_->damaged_bytes() > 0 ? " is not an LCM log (no event in it)"
+                                                                 : " is empty: no events to replay"));
+  }
+  now_ = first_->timestamp;  // what the program sees before run(), e.g. as its start time
   out_ = open_output(out_path);
 }
 
@@ -95,12 +101,7 @@ int LogBus::run() {
     end_run();
     return 0;
   }
-  std::optional<LogEvent> event = in_->next();
-  if (!event) {
-    throw std::runtime_error(in_path_ + (in_->damaged_bytes() > 0 ? " is not an LCM log (no event in it)"
-                                                                  : " is empty: no events to replay"));
-  }
-  now_ = event->timestamp;
+  std::optional<LogEvent> event = std::move(first_);
   begin_run();
   const bool terminal = isatty(STDERR_FILENO) != 0;
   for (; event && !stopping(); event = in_->next()) {

@@ -61,6 +61,7 @@ class LogBus final : public Bus {
   std::string out_path_;
   std::string in_path_;
   std::unique_ptr<EventLogReader> in_;
+  std::optional<LogEvent> first_;  // read at construction: the clock starts at its time
   std::unique_ptr<lcm::LogFile> out_;
   int64_t now_ = 0;
   LogBusStats stats_;

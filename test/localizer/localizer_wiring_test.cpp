@@ -5,6 +5,8 @@
 
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
+#include <limits>
+#include <map>
 
 #include "common/process/convert.hpp"
 #include "common/process/event_log.hpp"
@@ -12,6 +14,8 @@
 #include "common/process/memory_bus.hpp"
 #include "localizer/localizer_process.hpp"
 #include "recognizer/recognizer_process.hpp"
+#include "slamer/initial_pose_t.hpp"
+#include "slamer/odometry_t.hpp"
 #include "slamer/pose_estimate_t.hpp"
 #include "slamer/process_status_t.hpp"
 #include "test/localizer/small_world.hpp"
@@ -103,7 +107,8 @@ TEST(ProgramWiring, InMemoryAndReplayedRunsGiveTheSamePoses) {
   // Both programs on one in-memory bus: LINE_OBJECTS loop back to the localizer.
   MemoryBus memory("slamer-stack", events.front().utime);
   RecognizerProcess recognizer(memory, recognizer_config);
-  LocalizerProcess localizer(memory, config, LocalizerNode(w.map, config.localizer, w.robot.lidar.mount), false);
+  LocalizerProcess localizer(memory, config, w.robot, LocalizerNode(w.map, config.localizer, w.robot.lidar.mount),
+                             false);
   for (const Event& e : events) {
     memory.inject(e.channel, e.bytes, e.utime);
   }
@@ -134,7 +139,7 @@ TEST(ProgramWiring, InMemoryAndReplayedRunsGiveTheSamePoses) {
   }
   {
     LogBus bus("slamer-localizer", recognized, localized, config.process);
-    LocalizerProcess process(bus, config, LocalizerNode(w.map, config.localizer, w.robot.lidar.mount), false);
+    LocalizerProcess process(bus, config, w.robot, LocalizerNode(w.map, config.localizer, w.robot.lidar.mount), false);
     ASSERT_EQ(bus.run(), 0);
     EXPECT_EQ(process.node().counters().scans_without_objects, 0);
   }
@@ -178,6 +183,80 @@ TEST(ProgramWiring, InMemoryAndReplayedRunsGiveTheSamePoses) {
   for (const std::string& f : {sensors, recognized, localized}) {
     std::remove(f.c_str());
   }
+}
+
+template <class Msg>
+std::vector<uint8_t> bytes_of(const Msg& msg) {
+  std::vector<uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
+  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// The fault probing's single messages, each between good ones: none moves the
+// estimate, none costs a good scan, each is counted as a drop of its channel.
+TEST(ProgramWiring, NoSingleBadMessageMovesTheEstimateOrCostsAGoodScan) {
+  const SmallWorld w;
+  const std::vector<Event> events = simulate(w, 120);
+  const LocalizerProcessConfig config = localizer_config(w);
+  const int64_t t0 = events.front().utime;
+  MemoryBus bus("slamer-localizer", t0);
+  RecognizerProcess recognizer(bus, RecognizerProcessConfig{});
+  LocalizerProcess localizer(bus, config, w.robot, LocalizerNode(w.map, config.localizer, w.robot.lidar.mount), false);
+  int scans = 0;
+  for (const Event& e : events) {
+    bus.inject(e.channel, e.bytes, e.utime);
+    if (e.channel != "LIDAR" || ++scans % 20 != 10) {
+      continue;
+    }
+    const int64_t at = e.utime + 1;
+    odometry_t jump{};  // the right type, a body 5 m away
+    jump.utime = at;
+    jump.x = 5.0;
+    jump.y = -3.0;
+    bus.inject("ODOMETRY", bytes_of(jump), at);
+    laser_scan_t future{};  // a good scan stamped an hour ahead
+    laser_scan_t message = to_message(w.scan_at(w.options.start));
+    future = message;
+    future.utime = e.utime + 3'600'000'000;
+    bus.inject("LIDAR", bytes_of(future), at);
+    laser_scan_t zero = message;  // utime 0
+    zero.utime = 0;
+    bus.inject("LIDAR", bytes_of(zero), at);
+    laser_scan_t two_beams = message;  // NaN increment, two beams
+    two_beams.utime = e.utime + 2;
+    two_beams.angle_increment = std::numeric_limits<float>::quiet_NaN();
+    two_beams.ranges.resize(2);
+    two_beams.nranges = 2;
+    bus.inject("LIDAR", bytes_of(two_beams), at);
+    initial_pose_t pose{};  // far off the map, negative variance
+    pose.utime = at;
+    pose.x = 1e12;
+    pose.y = -1e12;
+    pose.cov[0] = -1.0;
+    bus.inject("INITIAL_POSE", bytes_of(pose), at);
+  }
+  ASSERT_EQ(bus.run(), 0);
+  const std::vector<pose_estimate_t> poses = poses_in(bus.published());
+  ASSERT_EQ(poses.size(), 120u) << "a good scan was lost, or a bad one used";
+  pose_estimate_t truth{};
+  for (const Event& e : events) {
+    pose_estimate_t t{};
+    if (e.channel == "GROUND_TRUTH" && decode_message(e.bytes.data(), e.bytes.size(), &t) == DecodeStatus::kOk &&
+        t.utime <= poses.back().utime) {
+      truth = t;
+    }
+  }
+  EXPECT_THAT(poses.back(), test::PoseNear(truth, 0.10, 0.05));
+  const process_status_t status = bus.health().status(bus.now());
+  std::map<std::string, int64_t> drops;
+  for (const channel_stats_t& c : status.channels) {
+    if (c.direction == channel_stats_t::SUBSCRIBED) {
+      drops[c.channel] = c.drops;
+    }
+  }
+  EXPECT_EQ(drops["INITIAL_POSE"], 6);
+  EXPECT_EQ(drops["ODOMETRY"], 12);  // each jump there and the jump back: neither integrated
+  EXPECT_GE(drops["LIDAR"], 3 * 6);  // future, zero and broken scans (the recognizer counts its own too)
 }
 
 }  // namespace
