@@ -1,5 +1,6 @@
 #include "drivers/wheels/wheel_odometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace slamer::tfrog {
@@ -49,7 +50,9 @@ FrameStamp FrameClock::stamp(int64_t receive_utime, int frames_behind) {
     return out;
   }
   const double elapsed = static_cast<double>(measured - *last_);
-  const auto steps = static_cast<int64_t>(std::llround(elapsed / static_cast<double>(period_)));
+  // A gap counts as lost frames only past 1.7 periods: read-time jitter up to 3.5 ms is not a loss.
+  const auto steps =
+      static_cast<int64_t>(std::floor((elapsed + 0.3 * static_cast<double>(period_)) / static_cast<double>(period_)));
   if (steps > 200 || elapsed < -10.0 * static_cast<double>(period_)) {  // a long gap or a clock jump: restart
     out.utime = measured;
     out.lost = steps > 200 ? steps - 1 : 0;
@@ -59,7 +62,8 @@ FrameStamp FrameClock::stamp(int64_t receive_utime, int frames_behind) {
     const int64_t predicted = *last_ + n * period_;
     // Arrival bounds the send time from above: an early arrival pulls the
     // estimate back at once, late arrivals (latency jitter) only slowly.
-    out.utime = measured < predicted ? measured : predicted + (measured - predicted) / 32;
+    out.utime =
+        measured < predicted ? std::max(measured, *last_ + period_ / 2) : predicted + (measured - predicted) / 32;
   }
   lost_total_ += out.lost;
   last_ = out.utime;
