@@ -69,6 +69,7 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   reader.read("uncertain_ess_fraction", &o->uncertain_ess_fraction, probability());
   reader.read("lost_mean_log_likelihood", &o->lost_mean_log_likelihood);
   reader.read("lost_after", &o->lost_after, at_least(1));
+  reader.read("scan_timeout", &o->scan_timeout, in_range(0.01, 60.0));
   reader.read("objects_wait", &o->objects_wait, in_range(0.0, 10.0));
   reader.read("objects_timeout", &o->objects_timeout, in_range(0.01, 60.0));
   reader.read("odometry_timeout", &o->odometry_timeout, in_range(0.01, 60.0));

@@ -57,6 +57,7 @@ struct LocalizerOptions {
   double lost_mean_log_likelihood = -3.0;  // per used beam; below for `lost_after` scans: LOST
   int lost_after = 20;
   // Input streams (LocalizerNode).
+  double scan_timeout = 2.0;           // [s] no scan for this long: no pose, PROCESS_STATUS says so
   double objects_wait = 0.1;           // [s] how long a scan waits for its LINE_OBJECTS
   double objects_timeout = 1.0;        // [s] none for this long: the recognizer is missing, scans stop waiting
   double odometry_timeout = 0.5;       // [s] no odometry this close before a scan: odometry is missing
