@@ -1,6 +1,7 @@
 // slamer-wheels: the i-Cart mini's wheels. T-frog TF-2MD3 over USB serial
 // (--device) or encoders over SocketCAN (--can); ODOMETRY and WHEEL_ENCODERS
 // per frame, PROCESS_STATUS at 1 Hz, CMD_VEL in (T-frog).
+#include "common/process/process_main.hpp"
 #include "drivers/wheels/backends.hpp"
 
 namespace {
@@ -21,8 +22,13 @@ int run(const slamer::CommandLine& cli) {
     config.backend = "can";
     config.can.interface = cli.get("can");
   }
-  slamer::LcmProcess process("slamer-wheels", cli.get("lcm-url"), config.process);
-  return config.backend == "can" ? slamer::run_can(process, config) : slamer::run_tfrog(process, config);
+  const auto bus = slamer::open_bus(cli, "slamer-wheels", config.process);
+  if (config.backend == "can") {
+    slamer::start_can(*bus, config);
+  } else {
+    slamer::start_tfrog(*bus, config);
+  }
+  return bus->run();
 }
 
 }  // namespace

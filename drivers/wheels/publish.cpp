@@ -6,7 +6,7 @@
 
 namespace slamer {
 
-void publish_sample(LcmProcess& process, const WheelsConfig& config, const tfrog::Kinematics& kinematics,
+void publish_sample(Bus& bus, const WheelsConfig& config, const tfrog::Kinematics& kinematics,
                     const tfrog::OdometrySample& sample, const char* source, int64_t* seq) {
   odometry_t odometry{};
   odometry.utime = sample.utime;
@@ -16,7 +16,7 @@ void publish_sample(LcmProcess& process, const WheelsConfig& config, const tfrog
   odometry.theta = sample.pose.theta;
   odometry.v = sample.v;
   odometry.omega = sample.omega;
-  process.publish(config.channels.odometry, odometry);
+  bus.publish(config.channels.odometry, odometry);
   wheel_encoders_t encoders{};
   encoders.utime = sample.utime;
   encoders.seq = *seq;
@@ -24,7 +24,7 @@ void publish_sample(LcmProcess& process, const WheelsConfig& config, const tfrog
   encoders.nwheels = 2;
   const auto ticks = forward_ticks(sample.ticks, kinematics);
   encoders.ticks.assign(ticks.begin(), ticks.end());
-  process.publish(config.channels.wheel_encoders, encoders);
+  bus.publish(config.channels.wheel_encoders, encoders);
   ++*seq;
 }
 

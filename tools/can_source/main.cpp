@@ -17,7 +17,8 @@
 #include <stdexcept>
 
 #include "common/process/command_line.hpp"
-#include "common/process/lcm_process.hpp"
+#include "common/process/lcm_bus.hpp"
+#include "common/process/process_main.hpp"
 #include "tools/tfrog_sim/wheel_path.hpp"
 
 namespace {

@@ -10,7 +10,8 @@
 #include <optional>
 
 #include "common/process/command_line.hpp"
-#include "common/process/lcm_process.hpp"
+#include "common/process/lcm_bus.hpp"
+#include "common/process/process_main.hpp"
 #include "tools/tfrog_sim/pty_port.hpp"
 #include "tools/tfrog_sim/tfrog_board.hpp"
 #include "tools/tfrog_sim/wheel_path.hpp"
