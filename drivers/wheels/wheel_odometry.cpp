@@ -44,26 +44,32 @@ void DiffDriveIntegrator::add(const std::array<int64_t, 2>& delta, double dt) {
 FrameStamp FrameClock::stamp(int64_t receive_utime, int frames_behind) {
   const int64_t measured = receive_utime - latency_ - static_cast<int64_t>(frames_behind) * period_;
   FrameStamp out;
-  if (!last_) {
+  const int64_t nominal = last_ ? *last_ + period_ : measured;
+  const int64_t delay = measured - nominal;                        // against "no frame lost"
+  if (!last_ || delay > 200 * period_ || delay < -10 * period_) {  // first frame, long gap or clock jump
     out.utime = measured;
-    last_ = measured;
-    return out;
-  }
-  const double elapsed = static_cast<double>(measured - *last_);
-  // A gap counts as lost frames only past 1.7 periods: read-time jitter up to 3.5 ms is not a loss.
-  const auto steps =
-      static_cast<int64_t>(std::floor((elapsed + 0.3 * static_cast<double>(period_)) / static_cast<double>(period_)));
-  if (steps > 200 || elapsed < -10.0 * static_cast<double>(period_)) {  // a long gap or a clock jump: restart
-    out.utime = measured;
-    out.lost = steps > 200 ? steps - 1 : 0;
+    out.lost = last_ && delay > 0 ? delay / period_ : 0;
+    late_frames_ = 0;
+  } else if (delay < 0) {
+    // Arrival bounds the send time from above: an early arrival pulls the estimate back at once.
+    out.utime = std::max(measured, *last_ + period_ / 2);
+    late_frames_ = 0;
   } else {
-    const int64_t n = std::max<int64_t>(steps, 1);
-    out.lost = n - 1;
-    const int64_t predicted = *last_ + n * period_;
-    // Arrival bounds the send time from above: an early arrival pulls the
-    // estimate back at once, late arrivals (latency jitter) only slowly.
-    out.utime =
-        measured < predicted ? std::max(measured, *last_ + period_ / 2) : predicted + (measured - predicted) / 32;
+    // Late arrivals (read latency) move the estimate only slowly. Frames that
+    // stay at least ~a period late for kConfirm frames in a row mean frames
+    // were lost: one late read alone is not a loss.
+    out.utime = nominal + delay / 32;
+    if (delay >= period_ * 7 / 10) {
+      min_late_ = late_frames_ == 0 ? delay : std::min(min_late_, delay);
+      if (++late_frames_ >= kConfirm) {
+        const int64_t lost = (min_late_ + period_ * 3 / 10) / period_;
+        out.lost = lost;
+        out.utime = std::min(out.utime + lost * period_, measured);
+        late_frames_ = 0;
+      }
+    } else {
+      late_frames_ = 0;
+    }
   }
   lost_total_ += out.lost;
   last_ = out.utime;

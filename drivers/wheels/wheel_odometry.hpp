@@ -10,8 +10,10 @@
 // dtheta = (r - l) / tread, integrated exactly on the arc (SE(2) exponential)
 // or, as YP-Spur does, with a first-order step (kEuler) for comparison.
 // FrameClock stamps frames: arrival minus the half USB frame and the frames
-// still queued behind it, filtered against the fixed frame period; gaps are
-// counted as lost frames. Pure: time is passed in.
+// still queued behind it, filtered against the fixed frame period; a gap is
+// counted as lost frames once the following frames stay a period late (a
+// single late read is not a loss; the frames around a loss are stamped up to
+// a period early). Pure: time is passed in.
 #pragma once
 
 #include <array>
@@ -72,14 +74,20 @@ class FrameClock {
   // A frame completed in a read that arrived at receive_utime, with
   // `frames_behind` more complete frames in the same read after it.
   FrameStamp stamp(int64_t receive_utime, int frames_behind);
-  void reset() { last_.reset(); }
+  void reset() {
+    last_.reset();
+    late_frames_ = 0;
+  }
   int64_t lost_total() const { return lost_total_; }
 
  private:
   int64_t period_;
   int64_t latency_;
+  static constexpr int kConfirm = 4;
   std::optional<int64_t> last_;
   int64_t lost_total_ = 0;
+  int late_frames_ = 0;
+  int64_t min_late_ = 0;
 };
 
 }  // namespace slamer::tfrog

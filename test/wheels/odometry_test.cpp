@@ -102,11 +102,22 @@ TEST(FrameClock, BacklogCorrectionFilterAndLostFrames) {
   const FrameStamp late = clock.stamp(1'017'000, 0);
   EXPECT_GE(late.utime, 1'014'500);
   EXPECT_LT(late.utime, 1'014'600);
-  // A 20 ms gap: three frames lost.
-  const FrameStamp gap = clock.stamp(1'037'000, 0);
-  EXPECT_EQ(gap.lost, 3);
+  // One read 6 ms late, then on time again: not a loss.
+  const FrameStamp slow = clock.stamp(1'025'500, 0);
+  EXPECT_EQ(slow.lost, 0);
+  EXPECT_EQ(clock.stamp(1'025'000, 0).lost, 0);
+  EXPECT_EQ(clock.stamp(1'030'000, 0).lost, 0);
+  // A 20 ms gap (three frames missing): confirmed when the next frames stay late.
+  int64_t lost = 0;
+  int64_t t = 1'050'000;
+  FrameStamp s;
+  for (int i = 0; i < 6; ++i, t += 5000) {
+    s = clock.stamp(t, 0);
+    lost += s.lost;
+  }
+  EXPECT_EQ(lost, 3);
   EXPECT_EQ(clock.lost_total(), 3);
-  EXPECT_NEAR(static_cast<double>(gap.utime), 1034500.0, 200.0);
+  EXPECT_NEAR(static_cast<double>(s.utime), static_cast<double>(t - 5000 - 500), 300.0);
 }
 
 }  // namespace

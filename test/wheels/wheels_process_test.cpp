@@ -184,6 +184,12 @@ TEST(WheelsProcess, FiftyMetrePathWithTurnsAndReverse) {
   // Forward-positive: net forward travel of each wheel in counts (~1.5 million counts, many int16 wraps).
   EXPECT_GT(enc.ticks[0], 1000000);
   EXPECT_GT(enc.ticks[1], 1000000);
+  // Nothing was lost or damaged on the pty (the status counts gaps in the 5 ms frame sequence).
+  rig.bus.pump_until([&] { return !rig.bus.status.empty(); }, 2.0);
+  ASSERT_FALSE(rig.bus.status.empty());
+  const std::string& message = rig.bus.status.back().message;
+  EXPECT_NE(message.find("damaged 0, wrong length 0"), std::string::npos) << message;
+  EXPECT_NE(message.find("lost 0,"), std::string::npos) << message;
   EXPECT_TRUE(rig.wheels->running());
 }
 
