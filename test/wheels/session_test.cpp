@@ -150,6 +150,24 @@ TEST(TfrogSession, TimeoutByServoStopWhenConfigured) {
   EXPECT_FALSE(rig.session.should_close());
 }
 
+TEST(TfrogSession, ReadsEmbeddedParametersWhenConfigured) {
+  SessionOptions options;
+  options.use_embedded_param = true;
+  BoardOptions board;
+  // The board's copy says the wheels are 10 % larger.
+  std::string text =
+      "COUNT_REV 400\nVOLT 24\nCYCLE 0.001\nGEAR 75\nMOTOR_R 0.75\nTORQUE_FINENESS 0.000001\n"
+      "RADIUS[0] 0.082\nRADIUS[1] -0.082\nTREAD 0.30737\nTORQUE_MAX 0.05\nTORQUE_LIMIT 0.4\n"
+      "MAX_VEL 0.9\nMAX_W 3.14\nMAX_ACC_V 1.5\nMAX_ACC_W 6.28\nINTEGRAL_MAX 0.05\nMOTOR_VC 630.0\n"
+      "MOTOR_TC 0.01515\nGAIN_KP 80\nGAIN_KI 250\n";
+  board.embedded_param = text;
+  Rig rig(options, board);
+  rig.run(2000);
+  ASSERT_EQ(rig.session.status().link, LinkState::kRunning) << rig.session.status().last_problem;
+  EXPECT_DOUBLE_EQ(rig.session.kinematics().radius[0], 0.082);
+  EXPECT_EQ(rig.board.servo(0), 1);
+}
+
 TEST(TfrogSession, RejectsAnIncompatibleBoardAfterThreeTries) {
   BoardOptions old_board;
   old_board.protocol = "YPP:05:00";

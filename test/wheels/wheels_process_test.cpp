@@ -265,24 +265,37 @@ TEST(WheelsProcess, CommandTimeoutStopsTheWheelsAndTheyStayStopped) {
   rig.bus.pump_for(1.0, [&] { rig.bus.command(0.3, 0.2); });
   const int64_t last_command = rig.bus.last_command;
   rig.bus.pump_for(1.5);
+  // The final stop: the first all-zero line after the last line that drove.
   bool drove = false;
   int64_t stopped = 0;
+  int64_t last_drive = 0;
   for (const auto& l : sim_lines(rig.sim->stdout_text())) {
     if (l.word != "servo" || l.values.size() != 4) {
       continue;
     }
-    if (l.values[0] == 3 && l.values[2] != 0) {
+    if (l.values[0] == 3 && (l.values[2] != 0 || l.values[3] != 0)) {
       drove = true;
-      EXPECT_EQ(stopped, 0) << "drove again after the stop";
-    }
-    if (drove && stopped == 0 && l.utime > last_command && l.values[2] == 0 && l.values[3] == 0) {
+      stopped = 0;
+      last_drive = l.utime;
+    } else if (drove && stopped == 0 && l.values[2] == 0 && l.values[3] == 0) {
       stopped = l.utime;
     }
   }
   EXPECT_TRUE(drove);
   ASSERT_GT(stopped, 0);
   EXPECT_LT(stopped - last_command, 300'000);
+  EXPECT_LT(last_drive - last_command, 300'000);  // and never drove again without a command
   EXPECT_TRUE(rig.wheels->running());
+  // A clean exit leaves both servos at STOP.
+  rig.wheels->signal(SIGINT);
+  EXPECT_EQ(rig.wheels->wait(5.0), std::optional<int>(0));
+  rig.bus.pump_for(0.1);
+  std::optional<SimLine> last_state;
+  for (const auto& l : sim_lines(rig.sim->stdout_text())) {
+    last_state = l.word == "servo" ? std::optional<SimLine>(l) : last_state;
+  }
+  ASSERT_TRUE(last_state);
+  EXPECT_EQ(last_state->values, (std::vector<double>{0, 0, 0, 0}));
 }
 
 TEST(WheelsProcess, KilledDriverIsStoppedByTheBoardWatchdog) {
