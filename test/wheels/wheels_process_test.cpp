@@ -59,6 +59,15 @@ class Bus {
   void pump_for(double seconds, const std::function<void()>& every_50ms = {}) {
     pump_until([] { return false; }, seconds, every_50ms);
   }
+  // Pumps until ODOMETRY and WHEEL_ENCODERS have caught up with `utime` (a loaded machine lags).
+  bool catch_up(int64_t utime, double timeout_s) {
+    return pump_until(
+        [&] {
+          return !odometry.empty() && odometry.back().utime >= utime && !encoders.empty() &&
+                 encoders.back().utime >= utime;
+        },
+        timeout_s);
+  }
   void command(double v, double omega) {
     velocity_command_t msg{};
     msg.utime = wall_utime();
@@ -161,22 +170,23 @@ TEST(WheelsProcess, FiftyMetrePathWithTurnsAndReverse) {
   Rig rig(11, {"--path", kPath50, "--path-delay", "0.3"});
   ASSERT_TRUE(rig.bus.pump_until([&] { return rig.sim->stdout_text().find("path-done") != std::string::npos; }, 20.0))
       << rig.wheels->stderr_text();
-  rig.bus.pump_for(0.3);
   const auto done = find_line(rig.sim->stdout_text(), "path-done");
   ASSERT_TRUE(done && done->values.size() == 4);
+  ASSERT_TRUE(rig.bus.catch_up(done->utime + 100'000, 5.0));
   const double distance = done->values[3];
   EXPECT_NEAR(distance, 50.0, 0.01);
   ASSERT_FALSE(rig.bus.odometry.empty());
-  const odometry_t& last = rig.bus.odometry.back();
+  const odometry_t last = rig.bus.odometry.back();
   const double position_error = std::hypot(last.x - done->values[0], last.y - done->values[1]);
   EXPECT_LT(position_error, 0.001 * distance)
       << last.x << " " << last.y << " vs " << done->values[0] << " " << done->values[1];
   EXPECT_LT(std::fabs(angle_diff(last.theta, done->values[2])), 0.5 * M_PI / 180.0);
-  // One message per frame, consecutive seq; wheel_encoders_t in step.
+  // One message per frame: seq and utime rise (UDP multicast may drop a few on a loaded machine).
   for (std::size_t i = 1; i < rig.bus.odometry.size(); ++i) {
-    ASSERT_EQ(rig.bus.odometry[i].seq, rig.bus.odometry[i - 1].seq + 1);
+    ASSERT_GT(rig.bus.odometry[i].seq, rig.bus.odometry[i - 1].seq);
     ASSERT_GT(rig.bus.odometry[i].utime, rig.bus.odometry[i - 1].utime);
   }
+  EXPECT_GT(rig.bus.odometry.size(), static_cast<std::size_t>(0.9 * static_cast<double>(last.seq)));
   ASSERT_FALSE(rig.bus.encoders.empty());
   const auto& enc = rig.bus.encoders.back();
   ASSERT_EQ(enc.nwheels, 2);
@@ -196,11 +206,12 @@ TEST(WheelsProcess, FiftyMetrePathWithTurnsAndReverse) {
 TEST(WheelsProcess, DamagedDroppedAndShortFramesAreCountedNotFatal) {
   Rig rig(12, {"--path", "6,0.5,1.0", "--corrupt-every", "7", "--drop-every", "13", "--wrong-length-every", "11"});
   ASSERT_TRUE(rig.bus.pump_until([&] { return rig.sim->stdout_text().find("path-done") != std::string::npos; }, 10.0));
-  rig.bus.pump_for(1.2);
   const auto done = find_line(rig.sim->stdout_text(), "path-done");
   ASSERT_TRUE(done);
+  ASSERT_TRUE(rig.bus.catch_up(done->utime + 100'000, 5.0));
+  rig.bus.pump_for(1.2);  // a status period
   ASSERT_FALSE(rig.bus.odometry.empty());
-  const auto& last = rig.bus.odometry.back();
+  const odometry_t last = rig.bus.odometry.back();
   // Counts are absolute: a lost frame loses no travel.
   EXPECT_LT(std::hypot(last.x - done->values[0], last.y - done->values[1]), 0.001 * done->values[3]);
   bool counted = false;
@@ -244,7 +255,7 @@ TEST(WheelsProcess, UnplugReplugReconnectsAndOdometryContinues) {
   }
   ASSERT_TRUE(before && after && enc_before);
   EXPECT_LT(after->utime - replug, 2'000'000);
-  rig.bus.pump_for(0.2);
+  ASSERT_TRUE(rig.bus.catch_up(after->utime + 200'000, 5.0));
   // No jump although the re-plugged board restarted its counters at 0.
   EXPECT_NEAR(rig.bus.odometry.back().x, before->x, 1e-9);
   EXPECT_NEAR(rig.bus.odometry.back().theta, before->theta, 1e-9);
@@ -336,7 +347,8 @@ TEST(WheelsProcess, CanEncodersWithBusOffGarbageAndShortFrames) {
   const auto done = find_line(source.stdout_text(), "path-done");
   ASSERT_TRUE(done);
   ASSERT_FALSE(bus.odometry.empty());
-  const auto& last = bus.odometry.back();
+  ASSERT_TRUE(bus.catch_up(done->utime + 100'000, 5.0));
+  const odometry_t last = bus.odometry.back();
   EXPECT_LT(std::hypot(last.x - done->values[0], last.y - done->values[1]), 0.001 * done->values[3] + 0.0005);
   EXPECT_LT(std::fabs(angle_diff(last.theta, done->values[2])), 0.5 * M_PI / 180.0);
   EXPECT_EQ(bus.encoders.back().source, "can");
