@@ -75,12 +75,14 @@ struct TfrogLink {
         bus.log_warning(error);
       }
       last_open_error = error;
+      device_vanished = true;
       next_open = bus.now() + static_cast<int64_t>(config.tfrog.reopen_period * 1e6);
       return;
     }
     last_open_error.clear();
     bus.log_info("opened " + config.tfrog.device);
-    session.opened(bus.now());
+    session.opened(bus.now(), device_vanished);
+    device_vanished = false;
     bus.watch(fd, [this] { on_readable(); });
   }
   void tick() {
@@ -88,6 +90,12 @@ struct TfrogLink {
       if (bus.now() >= next_open) {
         try_open();
       }
+      return;
+    }
+    // Read what is waiting first: after this process was descheduled the
+    // frames are in the buffer, and the session must not call that silence.
+    on_readable();
+    if (fd < 0) {
       return;
     }
     session.tick(bus.now());
@@ -131,6 +139,7 @@ struct TfrogLink {
   int64_t frames_before = 0;
   int64_t damaged_before = 0;
   std::string last_open_error;
+  bool device_vanished = false;  // an open failed since the last close: the board was unplugged
 };
 
 }  // namespace

@@ -49,12 +49,18 @@ TfrogSession::TfrogSession(SessionOptions options, RobotParams params)
       integrator_(kinematics_),
       clock_(us(kinematics_.cycle) * kFramePeriodCycles, 500) {}
 
-void TfrogSession::opened(int64_t now) {
+void TfrogSession::opened(int64_t now, bool board_reset) {
   close_reason_.reset();
   splitter_.reset();
   clock_.reset();
   // A re-plugged board has reset itself: its counters restart at 0.
-  unwrapper_.rebase(ever_opened_ ? std::optional<std::array<int16_t, 2>>(std::array<int16_t, 2>{0, 0}) : std::nullopt);
+  if (!ever_opened_) {
+    unwrapper_.rebase(std::nullopt);
+  } else if (board_reset) {
+    unwrapper_.rebase(std::array<int16_t, 2>{0, 0});
+  } else {
+    unwrapper_.rebase_either();
+  }
   if (ever_opened_) {
     ++status_.reconnects;
   }

@@ -75,7 +75,8 @@ class TfrogSession {
  public:
   TfrogSession(SessionOptions options, RobotParams params);
 
-  void opened(int64_t now);
+  // board_reset: the device had vanished (unplugged), so the board restarted its counters at 0.
+  void opened(int64_t now, bool board_reset = true);
   void closed(const std::string& reason);
   void received(std::span<const uint8_t> bytes, int64_t now);
   // A velocity command [m/s], [rad/s].

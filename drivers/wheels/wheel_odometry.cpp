@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace slamer::tfrog {
 
@@ -10,9 +11,13 @@ std::array<int64_t, 2> TickUnwrapper::feed(const std::array<int16_t, 2>& raw) {
   if (previous_) {
     for (std::size_t i = 0; i < 2; ++i) {
       delta[i] = static_cast<int16_t>(static_cast<uint16_t>(raw[i]) - static_cast<uint16_t>((*previous_)[i]));
+      if (either_ && std::abs(static_cast<int64_t>(raw[i])) < std::abs(delta[i])) {
+        delta[i] = raw[i];  // the board restarted at 0
+      }
       cumulative_[i] += delta[i];
     }
   }
+  either_ = false;
   previous_ = raw;
   return delta;
 }

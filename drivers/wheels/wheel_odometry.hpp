@@ -30,11 +30,19 @@ class TickUnwrapper {
   // Feeds one frame's raw counts; returns the per-motor deltas.
   std::array<int64_t, 2> feed(const std::array<int16_t, 2>& raw);
   // The next frame is measured from `anchor` (0 after a board restart); nullopt: from itself.
-  void rebase(std::optional<std::array<int16_t, 2>> anchor) { previous_ = anchor; }
+  void rebase(std::optional<std::array<int16_t, 2>> anchor) {
+    previous_ = anchor;
+    either_ = false;
+  }
+  // Unknown whether the board restarted (a reconnect without an unplug; its
+  // watchdog may have cleared the counts): the next frame is measured from
+  // the previous count or from 0, whichever gives the smaller motion.
+  void rebase_either() { either_ = previous_.has_value(); }
   const std::array<int64_t, 2>& cumulative() const { return cumulative_; }
 
  private:
   std::optional<std::array<int16_t, 2>> previous_;
+  bool either_ = false;
   std::array<int64_t, 2> cumulative_{};
 };
 

@@ -30,6 +30,13 @@ TEST(TickUnwrapper, WrapsAndRebases) {
   u.rebase(std::array<int16_t, 2>{0, 0});
   EXPECT_EQ(u.feed({25, -25}), (std::array<int64_t, 2>{25, -25}));
   EXPECT_EQ(u.cumulative(), (std::array<int64_t, 2>{1025, -1025}));
+  // A reconnect without an unplug: the board either kept counting or restarted at 0.
+  TickUnwrapper kept;
+  kept.feed({20000, -20000});
+  kept.rebase_either();
+  EXPECT_EQ(kept.feed({20100, -20100}), (std::array<int64_t, 2>{100, -100}));
+  kept.rebase_either();
+  EXPECT_EQ(kept.feed({30, -30}), (std::array<int64_t, 2>{30, -30}));  // its watchdog cleared the counts
   // Many revolutions forward in 5000-count steps.
   for (int i = 1; i <= 100; ++i) {
     u.feed({static_cast<int16_t>(25 + 5000 * i), -25});

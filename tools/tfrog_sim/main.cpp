@@ -1,10 +1,11 @@
 // slamer-tfrog-sim: a T-frog TF-2MD3 board on a pty, reached through a symlink.
 // Prints one line per change on stdout: "<utime> servo S0 S1 wref W0 W1", and
-// "<utime> unplugged|plugged|watchdog|path-start|path-done X Y THETA DISTANCE".
+// "<utime> unplugged|plugged|watchdog|path-start|path-done X Y THETA DISTANCE FRAMES".
 #include <poll.h>
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <optional>
@@ -17,6 +18,8 @@
 #include "tools/tfrog_sim/wheel_path.hpp"
 
 namespace {
+
+constexpr int64_t kMaxCatchUp = 20;  // [ticks]
 
 int64_t monotonic_us() {
   timespec ts{};
@@ -85,7 +88,12 @@ int run(const slamer::CommandLine& cli) {
       usleep(1000);
     }
     // One board tick per elapsed millisecond.
+    // When this process was descheduled, the lost time is skipped, not caught
+    // up at once: a burst of ticks without the host bytes that arrived in
+    // between would fire the board's watchdog the real board never fires.
+    // The path advances only with executed ticks, so counts and truth agree.
     const int64_t due = (monotonic_us() - start) / 1000;
+    board_ticks = std::max(board_ticks, due - kMaxCatchUp);
     for (; board_ticks < due; ++board_ticks) {
       const bool streaming = board.servo(0) != 0 || board.servo(1) != 0;
       if (streaming && streaming_since < 0) {
@@ -99,8 +107,8 @@ int run(const slamer::CommandLine& cli) {
           }
           pushed = path->step(0.001);
           if (path->done()) {
-            std::printf("%ld path-done %.9f %.9f %.9f %.6f\n", slamer::now_utime(), path->truth().x, path->truth().y,
-                        path->truth().theta, path->distance());
+            std::printf("%ld path-done %.9f %.9f %.9f %.6f %ld\n", slamer::now_utime(), path->truth().x,
+                        path->truth().y, path->truth().theta, path->distance(), board.frames_sent());
           }
         }
       }
