@@ -11,6 +11,7 @@
 #include "common/config/config_reader.hpp"
 #include "common/map/semantic_map.hpp"
 #include "common/robot/robot_options.hpp"
+#include "drivers/wheels/wheels_options.hpp"
 #include "localizer/localizer_config.hpp"
 #include "recognizer/recognizer_config.hpp"
 #include "test/support/child_process.hpp"
@@ -50,6 +51,7 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
          load_options<RobotOptions>(config.robot);
        }},
       {"robots/icart_mini.yaml", [](const std::string& path) { load_options<RobotOptions>(path); }},
+      {"wheels.yaml", [](const std::string& path) { load_options<WheelsConfig>(path); }},
       {"worlds/small_room.yaml", load_world},
       {"worlds/paper_indoor.yaml", load_world},
       {"maps/small_room/plan.yaml", [](const std::string& path) { load_options<FloorPlan>(path); }},
