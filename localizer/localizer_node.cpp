@@ -76,6 +76,10 @@ bool LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>
   return true;
 }
 
+void LocalizerNode::request_global_localization() {
+  filter_.initialize_global();
+}
+
 void LocalizerNode::on_scan(const LaserScan& scan) {
   switch (scan_order_.check(scan.utime)) {
     case Arrival::kStale:

@@ -43,6 +43,9 @@ class LocalizerNode {
   void on_odometry(int64_t utime, const Pose2& pose);
   // Returns false (and changes nothing) for a non-finite pose or sigma.
   bool on_initial_pose(const Pose2& pose, const std::vector<double>& sigma);
+  // Global localization on demand (an INITIAL_POSE whose cov[0] is negative):
+  // particles uniform over the map's free space, relocalized from the scans.
+  void request_global_localization();
   void on_scan(const LaserScan& scan);
   void on_objects(const LineObjectSet& objects);
   // Processes the oldest waiting scan if it may go (see above) by `now_utime`
