@@ -82,6 +82,7 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   reader.read("odometry_correction_memory", &o->odometry_correction_memory, in_range(0.0, 1000.0));
   reader.read("recovery_candidates", &o->recovery_candidates, in_range(0, 1'000'000));
   reader.read("recovery_fraction", &o->recovery_fraction, probability());
+  reader.read("scan_timeout", &o->scan_timeout, in_range(0.01, 60.0));
   reader.read("objects_wait", &o->objects_wait, in_range(0.0, 10.0));
   reader.read("objects_timeout", &o->objects_timeout, in_range(0.01, 60.0));
   reader.read("odometry_timeout", &o->odometry_timeout, in_range(0.01, 60.0));

@@ -70,6 +70,7 @@ struct LocalizerOptions {
   int recovery_candidates = 2000;            // while LOST or globally localizing: poses scored against each scan
   double recovery_fraction = 0.1;            // of the particles replaced by the best of them each scan
   // Input streams (LocalizerNode).
+  double scan_timeout = 2.0;           // [s] no scan for this long: no pose, PROCESS_STATUS says so
   double objects_wait = 0.1;           // [s] how long a scan waits for its LINE_OBJECTS
   double objects_timeout = 1.0;        // [s] none for this long: the recognizer is missing, scans stop waiting
   double odometry_timeout = 0.5;       // [s] no odometry this close before a scan: odometry is missing

@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config git
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java default-jdk-headless
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
-  libyaml-cpp-dev libgtest-dev libbenchmark-dev zlib1g-dev iproute2
+  libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev zlib1g-dev iproute2
   "$@"
 )
 
