@@ -101,7 +101,7 @@ class ParticleFilter {
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
                                 std::vector<std::vector<double>>* class_terms) const;
   void resample();
-  void inject(const PreparedScan& scan, UpdateResult* result);
+  void inject(const ScanPoints& points, UpdateResult* result);
   void update_fit(double fit, const PoseEstimate& e);
   LocalizerStatus status(const PoseEstimate& e) const;
 
