@@ -82,6 +82,10 @@ void LocalizerNode::restart_odometry() {
   last_odometry_used_.reset();
 }
 
+void LocalizerNode::request_global_localization() {
+  filter_.initialize_global();
+}
+
 void LocalizerNode::on_scan(const LaserScan& scan, int64_t arrival_utime) {
   last_scan_arrival_ = arrival_utime;
   switch (scan_order_.check(scan.utime)) {

@@ -48,6 +48,9 @@ class LocalizerNode {
   // integrated; the next odometry is the new reference.
   void restart_odometry();
   bool on_map(double x, double y) const { return filter_.geometry().cell_at({x, y}).has_value(); }
+  // Global localization on demand (an INITIAL_POSE whose cov[0] is negative):
+  // particles uniform over the map's free space, relocalized from the scans.
+  void request_global_localization();
   // `arrival_utime`: when the scan reached the process, in the clock `now` of
   // poll() is given in. A scan waits for its objects measured from its
   // arrival, so a log played live (old utimes, new arrival times) waits as it did.

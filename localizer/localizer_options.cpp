@@ -70,6 +70,19 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   reader.read("uncertain_ess_fraction", &o->uncertain_ess_fraction, probability());
   reader.read("lost_mean_log_likelihood", &o->lost_mean_log_likelihood);
   reader.read("lost_after", &o->lost_after, at_least(1));
+  reader.read("fit_distance", &o->fit_distance, in_range(0.01, 1.0));
+  reader.read("fit_expected", &o->fit_expected, probability());
+  reader.read("fit_uncertain", &o->fit_uncertain, probability());
+  reader.read("fit_lost", &o->fit_lost, probability());
+  if (!(o->fit_lost <= o->fit_uncertain && o->fit_uncertain < o->fit_expected)) {
+    reader.fail("fit_uncertain", "needs fit_lost <= fit_uncertain < fit_expected");
+  }
+  reader.read("noise_gain_max", &o->noise_gain_max, in_range(1.0, 100.0));
+  reader.read("noise_floor_trans", &o->noise_floor_trans, in_range(0.0, 1.0));
+  reader.read("noise_floor_rot", &o->noise_floor_rot, in_range(0.0, 1.0));
+  reader.read("odometry_correction_memory", &o->odometry_correction_memory, in_range(0.0, 1000.0));
+  reader.read("recovery_candidates", &o->recovery_candidates, in_range(0, 1'000'000));
+  reader.read("recovery_fraction", &o->recovery_fraction, probability());
   reader.read("scan_timeout", &o->scan_timeout, in_range(0.01, 60.0));
   reader.read("objects_wait", &o->objects_wait, in_range(0.0, 10.0));
   reader.read("objects_timeout", &o->objects_timeout, in_range(0.01, 60.0));

@@ -60,6 +60,19 @@ struct LocalizerOptions {
   double uncertain_ess_fraction = 0.05;    // ESS below this * particles: a few particles carry it all, UNCERTAIN
   double lost_mean_log_likelihood = -3.0;  // per used beam; below for `lost_after` scans: LOST
   int lost_after = 20;
+  // Robustness on real odometry (issue 9). The evidence is the scan fit: the
+  // fraction of beams ending within fit_distance of an obstacle of the map at
+  // the estimate (scan_fit.hpp), smoothed over about 10 scans for the status.
+  double fit_distance = 0.1;         // [m]
+  double fit_expected = 0.9;         // typical fit at a correct pose: motion noise as configured at or above it
+  double fit_uncertain = 0.5;        // smoothed fit below this: UNCERTAIN
+  double fit_lost = 0.3;             // below this for lost_after scans: LOST (until above fit_uncertain) and recovery
+  double noise_gain_max = 4.0;       // motion noise x up to this as the last scan's fit falls to fit_lost
+  double noise_floor_trans = 0.003;  // [m] per update x (gain - 1): spreads even a zero increment
+  double noise_floor_rot = 0.003;    // [rad] per update x (gain - 1)
+  double odometry_correction_memory = 10.0;  // [m] learn the odometry's heading error over this (0: off)
+  int recovery_candidates = 2000;            // while LOST or globally localizing: poses scored against each scan
+  double recovery_fraction = 0.1;            // of the particles replaced by the best of them each scan
   // Input streams (LocalizerNode).
   double scan_timeout = 2.0;           // [s] no scan for this long: no pose, PROCESS_STATUS says so
   double objects_wait = 0.1;           // [s] how long a scan waits for its LINE_OBJECTS

@@ -158,13 +158,22 @@ void LocalizerProcess::on_initial_pose(const initial_pose_t& m) {
   std::array<double, 9> covariance{};
   std::copy(std::begin(m.cov), std::end(m.cov), covariance.begin());
   const Pose2 pose{m.x, m.y, m.theta};
-  std::string problem = initial_pose_problem(pose, covariance, std::isfinite(m.x) && node_.on_map(m.x, m.y));
+  // cov[0] < 0 asks for global localization (initial_pose_t.lcm); x, y, theta are then ignored.
+  const bool global = std::isfinite(m.cov[0]) && m.cov[0] < 0.0;
+  std::string problem =
+      global ? "" : initial_pose_problem(pose, covariance, std::isfinite(m.x) && node_.on_map(m.x, m.y));
   if (problem.empty() && last_initial_pose_ &&
       bus_.now() - *last_initial_pose_ < static_cast<int64_t>(limits_.initial_pose_period * 1e6)) {
     problem = "more than one per " + std::to_string(limits_.initial_pose_period).substr(0, 3) + " s";
   }
   if (!problem.empty()) {
     refuse(channel, problem);
+    return;
+  }
+  if (global) {
+    node_.request_global_localization();
+    last_initial_pose_ = bus_.now();
+    bus_.log_info("global localization requested: particles over the map's free space");
     return;
   }
   if (!node_.on_initial_pose(pose, sigma_of_covariance(m.cov))) {

@@ -18,12 +18,18 @@ OdometryIncrement decompose(const Pose2& from, const Pose2& to) {
   return {rot1, trans, angle_diff(angle_diff(to.theta, from.theta), rot1)};
 }
 
-Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const LocalizerOptions& o, std::mt19937& rng) {
+Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const LocalizerOptions& o, std::mt19937& rng,
+                    double gain) {
   const double trans = std::abs(u.trans);
-  const double sd_rot1 = o.alpha_rot_from_rot * std::abs(u.rot1) + o.alpha_rot_from_trans * trans;
+  // The floor enters only as the gain rises above 1 (the scan fit fell): a
+  // filter that explains its scans keeps the configured noise exactly.
+  const double floor_trans = (gain - 1.0) * o.noise_floor_trans;
+  const double floor_rot = (gain - 1.0) * o.noise_floor_rot;
+  const double sd_rot1 = gain * (o.alpha_rot_from_rot * std::abs(u.rot1) + o.alpha_rot_from_trans * trans);
   const double sd_trans =
-      o.alpha_trans_from_trans * trans + o.alpha_trans_from_rot * (std::abs(u.rot1) + std::abs(u.rot2));
-  const double sd_rot2 = o.alpha_rot_from_rot * std::abs(u.rot2) + o.alpha_rot_from_trans * trans;
+      gain * (o.alpha_trans_from_trans * trans + o.alpha_trans_from_rot * (std::abs(u.rot1) + std::abs(u.rot2))) +
+      floor_trans;
+  const double sd_rot2 = gain * (o.alpha_rot_from_rot * std::abs(u.rot2) + o.alpha_rot_from_trans * trans) + floor_rot;
   std::normal_distribution<double> standard(0.0, 1.0);
   const double rot1 = u.rot1 + sd_rot1 * standard(rng);
   const double t = u.trans + sd_trans * standard(rng);

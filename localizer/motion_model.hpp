@@ -20,7 +20,11 @@ struct OdometryIncrement {
 // The increment from odometry pose `from` to `to` (odometry frame).
 OdometryIncrement decompose(const Pose2& from, const Pose2& to);
 
-// `pose` moved by the increment with noise drawn from `rng`.
-Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const LocalizerOptions& options, std::mt19937& rng);
+// `pose` moved by the increment with noise drawn from `rng`. The standard
+// deviations are multiplied by `gain` (>= 1: adaptive noise), and (gain - 1)
+// x noise_floor_trans / _rot is added, so that a zero increment still
+// spreads the particles when the scans say the pose is off.
+Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const LocalizerOptions& options, std::mt19937& rng,
+                    double gain = 1.0);
 
 }  // namespace slamer

@@ -11,8 +11,7 @@
 namespace slamer {
 
 struct ParticleFilter::PreparedScan {
-  std::vector<float> x;  // used beams' end points in the sensor frame, in cells
-  std::vector<float> y;
+  ScanPoints points;       // used beams' end points in the sensor frame, in cells
   std::vector<int> field;  // SLFM: class field per beam, -1 = unknown class (pose-independent)
 };
 
@@ -31,6 +30,9 @@ namespace {
 
 constexpr int kFreeSpace = -1;
 constexpr int kNoField = -2;
+constexpr double kClearance = 0.15;    // [m] global proposals keep the robot's centre this far from obstacles
+constexpr double kFitSmoothing = 0.1;  // per scan: about 10 scans (0.25 s at 40 Hz)
+constexpr int kProposalBeams = 48;     // beams a global proposal is scored with
 
 // How far the map's distance fields must reach: the LFM's likelihood field
 // and SLAMER's prior, which treats everything beyond 3 sigma_d as equally far.
@@ -44,9 +46,12 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
     : options_(options),
       mount_(lidar_mount),
       geometry_(map.geometry),
-      field_(std::make_shared<const DistanceField>(obstacle_distance_field(map, field_reach(options))), options.lfm),
+      obstacles_(std::make_shared<const DistanceField>(obstacle_distance_field(map, field_reach(options)))),
+      field_(obstacles_, options.lfm),
       free_distance_(std::make_shared<const DistanceField>(free_space_distance_field(map, field_reach(options)))),
-      rng_(static_cast<std::mt19937::result_type>(options.seed)) {
+      proposals_(std::make_shared<const GlobalProposals>(free_distance_, obstacles_, kClearance)),
+      rng_(static_cast<std::mt19937::result_type>(options.seed)),
+      correction_(options.odometry_correction_memory) {
   if (options.particles < 1) {
     throw std::invalid_argument("the filter needs at least one particle");
   }
@@ -79,12 +84,27 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   }
   low_likelihood_scans_ = 0;
   updated_ = false;
+  fit_smoothed_ = options_.fit_expected;
+  fresh_ = true;
+  low_fit_scans_ = 0;
+  lost_ = false;
+  global_ = false;
+  noise_gain_ = 1.0;
+  increment_.reset();
+  last_heading_.reset();  // the learned correction stays: it belongs to the robot, not the pose
 }
 
 void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
-  const OdometryIncrement u = decompose(odom_from, odom_to);
+  const OdometryIncrement raw = decompose(odom_from, odom_to);
+  if (increment_) {  // several predictions before one update: sum them
+    increment_ =
+        OdometryIncrement{increment_->rot1 + increment_->rot2 + raw.rot1, increment_->trans + raw.trans, raw.rot2};
+  } else if (last_heading_) {
+    increment_ = raw;
+  }
+  const OdometryIncrement u = correction_.correct(raw);
   for (Particle& p : particles_) {
-    p.pose = sample_motion(p.pose, u, options_, rng_);
+    p.pose = sample_motion(p.pose, u, options_, rng_, noise_gain_);
   }
 }
 
@@ -93,6 +113,8 @@ void ParticleFilter::diffuse(double seconds) {
     return;
   }
   std::normal_distribution<double> standard(0.0, 1.0);
+  last_heading_.reset();  // no odometry to compare the estimate's turn with
+  increment_.reset();
   const double position = options_.no_odometry_speed * seconds;
   const double heading = options_.no_odometry_turn_rate * seconds;
   for (Particle& p : particles_) {
@@ -113,8 +135,8 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
       continue;
     }
     const double a = scan.angle(i);
-    prepared.x.push_back(static_cast<float>(r * std::cos(a) * to_cells));
-    prepared.y.push_back(static_cast<float>(r * std::sin(a) * to_cells));
+    prepared.points.x.push_back(static_cast<float>(r * std::cos(a) * to_cells));
+    prepared.points.y.push_back(static_cast<float>(r * std::sin(a) * to_cells));
     int field = -1;
     if (options_.mode == LocalizerMode::kSlfm && objects != nullptr) {
       // The class of the physical object the beam's point lies on, if any.
@@ -189,9 +211,11 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
   const float height = static_cast<float>(geometry_.height);
   const bool slfm = options_.mode == LocalizerMode::kSlfm;
   double sum = 0.0;
-  for (std::size_t i = 0; i < scan.x.size(); ++i) {
-    const float gx = c * scan.x[i] - s * scan.y[i] + tx;
-    const float gy = s * scan.x[i] + c * scan.y[i] + ty;
+  const std::vector<float>& px = scan.points.x;
+  const std::vector<float>& py = scan.points.y;
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    const float gx = c * px[i] - s * py[i] + tx;
+    const float gy = s * px[i] + c * py[i] + ty;
     const LikelihoodField* field = &field_;
     if (slfm) {
       if (scan.field[i] < 0) {
@@ -275,6 +299,9 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   const PreparedScan beams = prepare(scan, objects);
   const PreparedObjects prepared_objects = objects != nullptr ? prepare_objects(*objects) : PreparedObjects{};
   const bool use_objects = options_.mode == LocalizerMode::kSlamer;
+  if (lost_ || global_) {
+    inject(beams.points, &result);
+  }
   std::vector<double> log_likelihood(particles_.size());
   std::vector<double> beam_part(particles_.size());
   for (std::size_t i = 0; i < particles_.size(); ++i) {
@@ -298,7 +325,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
     particles_[i].log_weight -= log_sum;
     mean_beam += std::exp(particles_[i].log_weight) * beam_part[i];
   }
-  const std::size_t used_beams = beams.x.size();
+  const std::size_t used_beams = beams.points.x.size();
   result.mean_log_likelihood =
       used_beams > 0 ? mean_beam / (options_.beam_weight * static_cast<double>(used_beams)) : 0.0;
 
@@ -330,6 +357,21 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
     low_likelihood_scans_ = 0;
   }
   result.estimate = estimate();
+  result.fit = scan_fit(*obstacles_, beams.points, sensor_in_cells(geometry_, result.estimate.pose, mount_),
+                        options_.fit_distance);
+  if (used_beams > 0) {
+    update_fit(result.fit, result.estimate);
+  }
+  result.estimate.status = status(result.estimate);
+  result.noise_gain = noise_gain_;
+  // Learn the odometry's heading error only from scans the filter is sure of.
+  if (increment_ && last_heading_ && result.injected == 0 && result.estimate.status == LocalizerStatus::kOk &&
+      result.fit >= options_.fit_uncertain) {
+    correction_.observe(*increment_, angle_diff(result.estimate.pose.theta, *last_heading_));
+  }
+  increment_.reset();
+  last_heading_ = result.estimate.pose.theta;
+  result.heading_per_metre = correction_.heading_per_metre();
   if (result.estimate.ess < options_.resample_threshold * static_cast<double>(particles_.size())) {
     resample();
     result.resampled = true;
@@ -368,18 +410,7 @@ PoseEstimate ParticleFilter::estimate() const {
     }
   }
   e.ess = (total * total) / sum_squares;
-  if (!updated_) {
-    e.status = LocalizerStatus::kInitializing;
-  } else if (low_likelihood_scans_ >= options_.lost_after) {
-    e.status = LocalizerStatus::kLost;
-  } else if (std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.uncertain_position_sigma ||
-             e.ess < options_.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
-    // Spread particles, or a posterior resting on a handful of them (e.g. right after a
-    // wide initialization: tight but not yet to be trusted).
-    e.status = LocalizerStatus::kUncertain;
-  } else {
-    e.status = LocalizerStatus::kOk;
-  }
+  e.status = status(e);
   return e;
 }
 

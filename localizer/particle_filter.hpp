@@ -8,9 +8,19 @@
 // the pose is the weighted mean (circular for heading) with its covariance;
 // (F) with the effective sample size below a threshold, systematic
 // resampling; otherwise weights carry over. Pure: no clock, no I/O, seeded.
+//
+// Robust on real odometry (issue 9): the status rests on the scan fit at the
+// estimate (scan_fit.hpp), not on the particles' spread; the motion noise
+// grows as the last scan fits worse (up to noise_gain_max) and has a floor;
+// the odometry's systematic heading error is learned while the filter is
+// sure and taken out of the increments (odometry_correction.hpp);
+// while LOST, or after request for global localization, each scan proposes
+// poses from the whole map (global_proposals.hpp) that replace the least
+// likely particles, so the filter relocalizes by itself.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -19,7 +29,9 @@
 #include "common/map/semantic_map.hpp"
 #include "common/semantic/objects.hpp"
 #include "common/sensors/laser_scan.hpp"
+#include "localizer/global_proposals.hpp"
 #include "localizer/localizer_options.hpp"
+#include "localizer/odometry_correction.hpp"
 
 namespace slamer {
 
@@ -41,6 +53,10 @@ struct UpdateResult {
   PoseEstimate estimate;
   LineObjectSet semantic;            // the scan's objects in the map frame with their class posteriors
   double mean_log_likelihood = 0.0;  // per used beam, weighted over particles
+  double fit = 0.0;                  // scan fit at the estimate (fraction of beams on the map's obstacles)
+  double noise_gain = 1.0;           // motion noise multiplier the next prediction uses
+  double heading_per_metre = 0.0;    // [rad/m] learned odometry heading error (OdometryCorrection)
+  int injected = 0;                  // particles replaced by global proposals before weighting
   bool resampled = false;
 };
 
@@ -52,6 +68,9 @@ class ParticleFilter {
   ParticleFilter(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount);
 
   void initialize(const Pose2& mean, const std::vector<double>& sigma);
+  // Global localization: particles uniform over the map's free space, and
+  // global proposals every scan until the scan fits (status UNCERTAIN until then).
+  void initialize_global();
   bool initialized() const { return !particles_.empty(); }
   // Moves every particle by the odometry increment from `odom_from` to `odom_to`.
   void predict(const Pose2& odom_from, const Pose2& odom_to);
@@ -83,19 +102,34 @@ class ParticleFilter {
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
                                 std::vector<std::vector<double>>* class_terms) const;
   void resample();
+  void inject(const ScanPoints& points, UpdateResult* result);
+  void update_fit(double fit, const PoseEstimate& e);
+  LocalizerStatus status(const PoseEstimate& e) const;
 
   LocalizerOptions options_;
   Pose2 mount_;
   GridGeometry geometry_;
+  std::shared_ptr<const DistanceField> obstacles_;
   LikelihoodField field_;
   std::vector<std::string> map_classes_;
   std::vector<std::shared_ptr<const DistanceField>> class_distances_;  // SLAMER prior: per map class
   std::vector<LikelihoodField> class_fields_;                          // SLFM: per map class, sharing those
   std::shared_ptr<const DistanceField> free_distance_;                 // for recognition classes on free space
+  std::shared_ptr<const GlobalProposals> proposals_;
   std::vector<Particle> particles_;
   std::mt19937 rng_;
   int low_likelihood_scans_ = 0;
   bool updated_ = false;
+  // Scan-fit state (issue 9).
+  double fit_smoothed_ = 1.0;
+  bool fresh_ = true;  // no scan since initialize()
+  int low_fit_scans_ = 0;
+  bool lost_ = false;
+  bool global_ = false;  // global localization under way
+  double noise_gain_ = 1.0;
+  OdometryCorrection correction_;
+  std::optional<OdometryIncrement> increment_;  // odometry since the last update (raw), for the correction
+  std::optional<double> last_heading_;          // the estimate's heading at the last update
 };
 
 }  // namespace slamer

@@ -4,7 +4,10 @@
 //   build/bin/localizer_bench
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include "localizer/particle_filter.hpp"
+#include "localizer/scan_fit.hpp"
 #include "recognizer/line_recognizer.hpp"
 #include "tools/sim/world.hpp"
 
@@ -41,9 +44,14 @@ const Fixture& fixture() {
   return f;
 }
 
-void run(benchmark::State& state, int particles, int beams, LocalizerMode mode) {
+void run(benchmark::State& state, int particles, int beams, LocalizerMode mode, bool robust = true) {
   const Fixture& f = fixture();
   LocalizerOptions options;
+  if (!robust) {  // issue 9's additions off: fixed motion noise, no odometry correction, no recovery
+    options.noise_gain_max = 1.0;
+    options.odometry_correction_memory = 0.0;
+    options.recovery_candidates = 0;
+  }
   options.mode = mode;
   options.particles = particles;
   ParticleFilter filter(f.map, options, f.robot.lidar.mount);
@@ -74,6 +82,57 @@ void BM_LfmParticles(benchmark::State& state) {
   run(state, static_cast<int>(state.range(0)), 1081, LocalizerMode::kLfm);
 }
 BENCHMARK(BM_LfmParticles)->Arg(500)->Unit(benchmark::kMillisecond);
+
+// Issue 9: what the robustness steps cost. Off = fixed noise, no correction, no recovery
+// (the scan fit for the status is always computed).
+void BM_LfmRobustOff(benchmark::State& state) {
+  run(state, static_cast<int>(state.range(0)), 1081, LocalizerMode::kLfm, false);
+}
+BENCHMARK(BM_LfmRobustOff)->Arg(500)->Unit(benchmark::kMillisecond);
+
+// The scan fit at one pose (the status evidence), every beam.
+void BM_ScanFit(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const DistanceField obstacles = obstacle_distance_field(f.map, 1.2);
+  const Pose2 pose{20.0, 8.25, 0.0};
+  const LaserScan scan = f.scan(1081, pose);
+  ScanPoints points;
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    if (scan.ranges[i] < scan.range_max) {
+      points.x.push_back(static_cast<float>(scan.ranges[i] * std::cos(scan.angle(i)) / f.map.geometry.resolution));
+      points.y.push_back(static_cast<float>(scan.ranges[i] * std::sin(scan.angle(i)) / f.map.geometry.resolution));
+    }
+  }
+  const Pose2 sensor = sensor_in_cells(f.map.geometry, pose, f.robot.lidar.mount);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(scan_fit(obstacles, points, sensor, 0.1));
+  }
+}
+BENCHMARK(BM_ScanFit)->Unit(benchmark::kMicrosecond);
+
+// One scan of a lost (or globally localizing) SLAMER filter, 500 particles x 1081 beams:
+// 2000 global proposals scored and 50 injected before the usual update.
+void BM_SlamerRecovering(benchmark::State& state) {
+  const Fixture& f = fixture();
+  LocalizerOptions options;
+  ParticleFilter filter(f.map, options, f.robot.lidar.mount);
+  const Pose2 pose{20.0, 8.25, 0.0};
+  const LaserScan scan = f.scan(1081, pose);
+  const LineObjectSet objects = LineRecognizer{RecognizerOptions{}}.recognize(scan);
+  filter.initialize_global();
+  int injected = 0;
+  for (auto _ : state) {
+    const UpdateResult r = filter.update(scan, &objects);
+    injected += r.injected;
+    if (r.injected == 0) {
+      state.PauseTiming();
+      filter.initialize_global();  // found it: lose it again
+      state.ResumeTiming();
+    }
+  }
+  state.counters["injected_per_scan"] = benchmark::Counter(injected, benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_SlamerRecovering)->Unit(benchmark::kMillisecond);
 
 void BM_SlfmParticles(benchmark::State& state) {
   run(state, static_cast<int>(state.range(0)), 1081, LocalizerMode::kSlfm);

@@ -228,11 +228,13 @@ TEST(ProgramWiring, NoSingleBadMessageMovesTheEstimateOrCostsAGoodScan) {
     two_beams.ranges.resize(2);
     two_beams.nranges = 2;
     bus.inject("LIDAR", bytes_of(two_beams), at);
-    initial_pose_t pose{};  // far off the map, negative variance
+    initial_pose_t pose{};  // far off the map, an indefinite covariance
     pose.utime = at;
     pose.x = 1e12;
     pose.y = -1e12;
-    pose.cov[0] = -1.0;
+    pose.cov[0] = 1.0;
+    pose.cov[1] = pose.cov[3] = 2.0;
+    pose.cov[4] = 1.0;
     bus.inject("INITIAL_POSE", bytes_of(pose), at);
   }
   ASSERT_EQ(bus.run(), 0);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "tools/sim/simulator.hpp"
 #include "tools/sim/world.hpp"
@@ -284,6 +285,140 @@ TEST(Simulator, MotionDistortionShiftsLateBeams) {
   const std::size_t mid = a.scans.size() / 2;
   EXPECT_FLOAT_EQ(a.scans[mid].ranges[0], b.scans[mid].ranges[0]);
   EXPECT_NE(a.scans[mid].ranges[1080], b.scans[mid].ranges[1080]);
+}
+
+// Odometry error model (issue 9): dead-reckoning heading drift of the odometry against the truth.
+struct Drift {
+  double path = 0.0;           // [m] true path length
+  double heading_error = 0.0;  // [rad] odometry heading change minus the true one, over the run
+  double odometry_turn = 0.0;  // [rad] summed |heading change| of odometry and truth
+  double true_turn = 0.0;
+  std::vector<double> jumps;  // per scan interval: change of the heading error [rad]
+};
+
+Drift drift_of(const RecordingSink& sink) {
+  Drift d;
+  std::size_t k = 0;
+  std::optional<double> previous_error;
+  for (std::size_t i = 0; i < sink.truth.size(); ++i) {
+    while (k + 1 < sink.odometry.size() && sink.odometry[k + 1].utime <= sink.truth[i].utime) {
+      ++k;
+    }
+    // The odometry at the scan's time (100 Hz samples, interpolated).
+    double odometry_theta = sink.odometry[k].pose.theta;
+    if (k + 1 < sink.odometry.size() && sink.odometry[k].utime <= sink.truth[i].utime) {
+      const double f = static_cast<double>(sink.truth[i].utime - sink.odometry[k].utime) /
+                       static_cast<double>(sink.odometry[k + 1].utime - sink.odometry[k].utime);
+      odometry_theta += f * angle_diff(sink.odometry[k + 1].pose.theta, odometry_theta);
+    }
+    const double error = angle_diff(angle_diff(odometry_theta, sink.odometry.front().pose.theta),
+                                    angle_diff(sink.truth[i].pose.theta, sink.truth.front().pose.theta));
+    if (i > 0) {
+      const Pose2& a = sink.truth[i - 1].pose;
+      const Pose2& b = sink.truth[i].pose;
+      d.path += std::hypot(b.x - a.x, b.y - a.y);
+      d.true_turn += std::abs(angle_diff(b.theta, a.theta));
+      d.jumps.push_back(angle_diff(error, *previous_error));
+    }
+    previous_error = error;
+    d.heading_error = error;
+  }
+  for (std::size_t i = 1; i < sink.odometry.size(); ++i) {
+    d.odometry_turn += std::abs(angle_diff(sink.odometry[i].pose.theta, sink.odometry[i - 1].pose.theta));
+  }
+  return d;
+}
+
+// The odometry tests need the truth at scan times, not the scans: 3 beams keep them fast.
+RecordingSink run_odometry(const TrueWorld& world, const WorldOptions& options, SimOptions sim_options, uint64_t seed) {
+  RobotOptions robot;
+  robot.lidar.beams = 3;
+  Simulator sim(world, options, robot, sim_options, seed);
+  RecordingSink sink;
+  while (sim.step(sink)) {
+  }
+  return sink;
+}
+
+SimOptions exact_odometry() {
+  SimOptions o;
+  o.wheel_radius_error_left = o.wheel_radius_error_right = o.tread_error = o.slip_stddev = 0.0;
+  o.range_stddev = 0.0;
+  return o;
+}
+
+TEST(OdometryErrors, RadiusErrorsOfOnePercentDriftAsRealRobotsDo) {
+  const TrueWorld world(make_room(), square_path(), "room");
+  const RecordingSink exact = run_odometry(world, square_path(), exact_odometry(), 1);
+  EXPECT_LT(std::abs(drift_of(exact).heading_error), 0.002);  // only tick quantization
+  // +-1 % radius (left +1 %, right -1 %): straight driving turns the odometry by
+  // 2 * 0.01 / tread rad per metre (3.73 deg/m for the i-Cart mini's 0.307 m tread).
+  SimOptions uncalibrated = exact_odometry();
+  uncalibrated.wheel_radius_error_left = 0.01;
+  uncalibrated.wheel_radius_error_right = -0.01;
+  const Drift d = drift_of(run_odometry(world, square_path(), uncalibrated, 1));
+  RobotOptions robot;
+  const double expected = 0.02 / robot.base.tread;  // [rad/m]
+  EXPECT_GT(d.path, 25.0);
+  EXPECT_NEAR(std::abs(d.heading_error) / d.path, expected, 0.05 * expected);
+  EXPECT_GT(std::abs(d.heading_error) / d.path * 180.0 / kPi, 3.0);  // 3-5 deg/m
+  EXPECT_LT(std::abs(d.heading_error) / d.path * 180.0 / kPi, 5.0);
+}
+
+TEST(OdometryErrors, TurnSlipGrowsWithTheYawRate) {
+  const TrueWorld world(make_room(), square_path(), "room");
+  SimOptions slipping = exact_odometry();
+  slipping.wheel_slip.turn_slip = 0.1;  // 10 % more differential travel per rad/s
+  const Drift exact = drift_of(run_odometry(world, square_path(), exact_odometry(), 1));
+  const Drift d = drift_of(run_odometry(world, square_path(), slipping, 1));
+  EXPECT_NEAR(exact.odometry_turn / exact.true_turn, 1.0, 0.03);  // sampling and ticks
+  // The odometry overstates the turns by turn_slip x |yaw rate| (about 0.5-1 rad/s on this path).
+  const double excess = (d.odometry_turn / d.true_turn) / (exact.odometry_turn / exact.true_turn) - 1.0;
+  EXPECT_GT(excess, 0.1 * 0.4);
+  EXPECT_LT(excess, 0.1 * 1.5);
+  // The random part: the same seed gives the same run, another seed another drift.
+  SimOptions noisy = exact_odometry();
+  noisy.wheel_slip.turn_slip_stddev = 0.1;
+  const Drift a = drift_of(run_odometry(world, square_path(), noisy, 5));
+  const Drift b = drift_of(run_odometry(world, square_path(), noisy, 5));
+  const Drift c = drift_of(run_odometry(world, square_path(), noisy, 6));
+  EXPECT_EQ(a.heading_error, b.heading_error);
+  EXPECT_NE(a.heading_error, c.heading_error);
+  EXPECT_GT(std::abs(a.heading_error - exact.heading_error), 1e-3);
+}
+
+TEST(OdometryErrors, BumpsAreShortSpikesOfOneWheel) {
+  const TrueWorld world(make_room(), square_path(), "room");
+  SimOptions bumpy = exact_odometry();
+  bumpy.wheel_slip.bump_rate = 0.5;  // [1/s]
+  bumpy.wheel_slip.bump_travel = 0.02;
+  bumpy.wheel_slip.bump_duration = 0.05;
+  const RecordingSink sink = run_odometry(world, square_path(), bumpy, 3);
+  const Drift d = drift_of(sink);
+  const Drift exact = drift_of(run_odometry(world, square_path(), exact_odometry(), 3));
+  ASSERT_EQ(d.jumps.size(), exact.jumps.size());  // the robot drives the same (the true pose steers it)
+  // A bump turns the odometry by bump_travel / tread within bump_duration: find
+  // the runs of scan intervals where the heading error moves, and their sizes.
+  RobotOptions robot;
+  const double kick = 0.02 / robot.base.tread;
+  std::vector<double> bumps;
+  double current = 0.0;
+  for (std::size_t i = 0; i < d.jumps.size(); ++i) {
+    const double jump = d.jumps[i] - exact.jumps[i];
+    if (std::abs(jump) > 0.05 * kick) {
+      current += jump;
+    } else if (current != 0.0) {
+      bumps.push_back(current);
+      current = 0.0;
+    }
+  }
+  const double seconds = static_cast<double>(sink.truth.back().utime - sink.truth.front().utime) * 1e-6;
+  const double expected = 0.5 * seconds;
+  EXPECT_GT(static_cast<double>(bumps.size()), expected - 3.0 * std::sqrt(expected));
+  EXPECT_LT(static_cast<double>(bumps.size()), expected + 3.0 * std::sqrt(expected));
+  for (const double b : bumps) {
+    EXPECT_NEAR(std::abs(b), kick, 0.15 * kick);
+  }
 }
 
 }  // namespace

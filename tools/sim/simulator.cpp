@@ -18,6 +18,11 @@ void read_options(const ConfigReader& reader, SimOptions* o) {
   reader.read("wheel_radius_error_right", &o->wheel_radius_error_right, in_range(-0.5, 0.5));
   reader.read("tread_error", &o->tread_error, in_range(-0.5, 0.5));
   reader.read("slip_stddev", &o->slip_stddev, in_range(0.0, 1.0));
+  reader.read("turn_slip", &o->wheel_slip.turn_slip, in_range(-0.5, 0.5));
+  reader.read("turn_slip_stddev", &o->wheel_slip.turn_slip_stddev, in_range(0.0, 0.5));
+  reader.read("bump_rate", &o->wheel_slip.bump_rate, in_range(0.0, 100.0));
+  reader.read("bump_travel", &o->wheel_slip.bump_travel, in_range(0.0, 1.0));
+  reader.read("bump_duration", &o->wheel_slip.bump_duration, in_range(0.001, 10.0));
 }
 
 namespace {
@@ -36,6 +41,7 @@ Simulator::Simulator(const TrueWorld& world, const WorldOptions& world_options, 
       follower_(world_options.path, robot.base),
       path_steps_(world_options.path.size()),
       odometry_(robot.base),
+      wheel_slip_(options.wheel_slip),
       step_us_(std::max<int64_t>(to_us(options.step), 1)),
       encoder_us_(std::max<int64_t>(to_us(options.encoder_period), 1)),
       scan_us_(std::max<int64_t>(to_us(robot.lidar.scan_period), 1)),
@@ -120,15 +126,16 @@ bool Simulator::step(SimulatorSink& sink) {
   // true (not nominal) geometry, with slip.
   const DiffDriveOptions& base = robot_.base;
   const double true_tread = base.tread * (1.0 + options_.tread_error);
-  const double left_travel = (command.v - command.omega * true_tread / 2.0) * dt;
-  const double right_travel = (command.v + command.omega * true_tread / 2.0) * dt;
+  double left_travel = (command.v - command.omega * true_tread / 2.0) * dt;
+  double right_travel = (command.v + command.omega * true_tread / 2.0) * dt;
   std::normal_distribution<double> slip(0.0, options_.slip_stddev);
   const double left_slip = options_.slip_stddev > 0.0 ? slip(odometry_rng_) : 0.0;
   const double right_slip = options_.slip_stddev > 0.0 ? slip(odometry_rng_) : 0.0;
-  left_ticks_ += travel_ticks(left_travel * (1.0 + left_slip),
-                              base.wheel_radius_left * (1.0 + options_.wheel_radius_error_left), base);
-  right_ticks_ += travel_ticks(right_travel * (1.0 + right_slip),
-                               base.wheel_radius_right * (1.0 + options_.wheel_radius_error_right), base);
+  left_travel *= 1.0 + left_slip;
+  right_travel *= 1.0 + right_slip;
+  wheel_slip_.apply(dt, command.omega, &left_travel, &right_travel, odometry_rng_);
+  left_ticks_ += travel_ticks(left_travel, base.wheel_radius_left * (1.0 + options_.wheel_radius_error_left), base);
+  right_ticks_ += travel_ticks(right_travel, base.wheel_radius_right * (1.0 + options_.wheel_radius_error_right), base);
   pose_ = compose(pose_, exp_se2({command.v * dt, 0.0, command.omega * dt}));
   now_us_ += step_us_;
   history_.emplace_back(now_us_, pose_);

@@ -1,6 +1,7 @@
 // Simulates the i-Cart mini driving its scripted path through the true world:
 // wheel encoders (true wheel radii and tread differ from the nominal ones the
-// odometry uses, plus per-step slip, so dead reckoning drifts as on a real
+// odometry uses, plus per-step slip, slip growing with the yaw rate and
+// occasional bumps (wheel_slip.hpp), so dead reckoning drifts as on a real
 // robot), odometry integrated from those ticks, and a scanning LiDAR whose
 // every beam is cast from where the sensor is at that beam's time (motion
 // distortion), with range noise, dropouts, and the classes' partial returns.
@@ -17,6 +18,7 @@
 #include "common/robot/diff_drive.hpp"
 #include "common/sensors/laser_scan.hpp"
 #include "tools/sim/path_follower.hpp"
+#include "tools/sim/wheel_slip.hpp"
 #include "tools/sim/world.hpp"
 
 namespace slamer {
@@ -32,8 +34,9 @@ struct SimOptions {
   double dropout_probability = 0.001;           // beams reported as NaN
   double wheel_radius_error_left = 0.0005;      // true radius = nominal * (1 + this)
   double wheel_radius_error_right = -0.0005;
-  double tread_error = 0.005;  // true tread = nominal * (1 + this)
-  double slip_stddev = 0.02;   // per-step relative noise on each wheel's travel
+  double tread_error = 0.005;   // true tread = nominal * (1 + this)
+  double slip_stddev = 0.02;    // per-step relative noise on each wheel's travel
+  WheelSlipOptions wheel_slip;  // slip growing with the yaw rate, bumps (all off by default)
 };
 void read_options(const ConfigReader& reader, SimOptions* options);
 
@@ -92,6 +95,7 @@ class Simulator {
   std::mt19937 lidar_rng_;
   std::mt19937 odometry_rng_;
   DiffDriveOdometry odometry_;
+  WheelSlip wheel_slip_;
 
   int64_t step_us_;
   int64_t encoder_us_;

@@ -1,0 +1,91 @@
+// ParticleFilter's robustness on real odometry (issue 9): the scan-fit
+// status, the adaptive motion-noise gain, global proposals while LOST and
+// global localization on demand. Split from particle_filter.cpp for size.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "localizer/particle_filter.hpp"
+
+namespace slamer {
+
+namespace {
+constexpr double kFitSmoothing = 0.1;  // per scan: about 10 scans (0.25 s at 40 Hz)
+constexpr int kProposalBeams = 48;     // beams a global proposal is scored with
+}  // namespace
+
+void ParticleFilter::initialize_global() {
+  initialize({}, {0.0, 0.0, 0.0});
+  if (proposals_->empty()) {
+    return;  // a map with no free space: nothing better than where it was
+  }
+  for (Particle& p : particles_) {
+    p.pose = proposals_->uniform(rng_);
+  }
+  global_ = true;
+  fit_smoothed_ = 0.0;
+  noise_gain_ = options_.noise_gain_max;
+}
+
+LocalizerStatus ParticleFilter::status(const PoseEstimate& e) const {
+  if (!updated_) {
+    return LocalizerStatus::kInitializing;
+  }
+  if ((lost_ && !global_) || low_likelihood_scans_ >= options_.lost_after) {
+    return LocalizerStatus::kLost;
+  }
+  // The scan does not fit the map where the estimate puts it; or spread
+  // particles, or a posterior resting on a handful of them (e.g. right after a
+  // wide initialization: tight but not yet to be trusted).
+  if (global_ || fit_smoothed_ < options_.fit_uncertain ||
+      std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.uncertain_position_sigma ||
+      e.ess < options_.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
+    return LocalizerStatus::kUncertain;
+  }
+  return LocalizerStatus::kOk;
+}
+
+void ParticleFilter::update_fit(double fit, const PoseEstimate& e) {
+  // The first scan after an initialization stands alone: a pose given by
+  // hand is no evidence that the scans fit there.
+  fit_smoothed_ = fresh_ ? fit : fit_smoothed_ + kFitSmoothing * (fit - fit_smoothed_);
+  fresh_ = false;
+  low_fit_scans_ = fit_smoothed_ < options_.fit_lost ? low_fit_scans_ + 1 : 0;
+  if (low_fit_scans_ >= options_.lost_after) {
+    lost_ = true;
+  }
+  const bool fits = fit_smoothed_ >= options_.fit_uncertain;
+  if (fits) {
+    lost_ = false;
+  }
+  if (global_ && fits && std::sqrt(std::max(e.covariance[0], e.covariance[4])) <= options_.uncertain_position_sigma) {
+    global_ = false;
+  }
+  // Motion noise from how well the prediction explained this scan.
+  const double deficit = (options_.fit_expected - fit) / std::max(options_.fit_expected - options_.fit_lost, 1e-6);
+  noise_gain_ = 1.0 + (options_.noise_gain_max - 1.0) * std::clamp(deficit, 0.0, 1.0);
+}
+
+void ParticleFilter::inject(const ScanPoints& points, UpdateResult* result) {
+  const int keep = static_cast<int>(options_.recovery_fraction * static_cast<double>(particles_.size()));
+  if (keep < 1 || options_.recovery_candidates < 1 || proposals_->empty()) {
+    return;
+  }
+  const std::vector<Pose2> poses =
+      proposals_->propose(field_, points, mount_, options_.recovery_candidates, keep, kProposalBeams, rng_);
+  // They replace the least likely particles, with the weight of the most
+  // likely one: this scan's full measurement model decides between them.
+  std::vector<std::size_t> order(particles_.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(poses.size()), order.end(),
+                    [&](std::size_t a, std::size_t b) { return particles_[a].log_weight < particles_[b].log_weight; });
+  const double best = std::max_element(particles_.begin(), particles_.end(), [](const Particle& a, const Particle& b) {
+                        return a.log_weight < b.log_weight;
+                      })->log_weight;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    particles_[order[k]] = {poses[k], best};
+  }
+  result->injected = static_cast<int>(poses.size());
+}
+
+}  // namespace slamer
