@@ -44,7 +44,7 @@ bool ClockModel::sync(const std::vector<SyncSample>& samples) {
 }
 
 void ClockModel::add_sync_sample(const SyncSample& sample) {
-  if (sample.receive_us < sample.send_us || !synced_) {
+  if (sample.receive_us < sample.send_us) {
     return;
   }
   sync_samples_.push_back(sample);
@@ -63,10 +63,16 @@ void ClockModel::fit_sync() {
   const SyncSample& newest = sync_samples_.back();
   const double ref_device_us = static_cast<double>(newest.device_ms) * 1000.0;
   const int64_t ref_host_us = newest.receive_us;
+  // Until the gain is known the offset uses only the last second of samples:
+  // an unknown drift of 100 ppm then bends them by 0.1 ms at most.
+  int64_t oldest_us = std::numeric_limits<int64_t>::min();  // the gain search uses every sample
   auto bounds = [&](double g, double* lo, double* hi) {
     *lo = -std::numeric_limits<double>::infinity();
     *hi = std::numeric_limits<double>::infinity();
     for (const SyncSample& s : sync_samples_) {
+      if (s.receive_us < oldest_us && &s != &newest) {
+        continue;
+      }
       const double d_us = static_cast<double>(s.device_ms) * 1000.0 - ref_device_us;
       *hi = std::min(*hi, static_cast<double>(s.receive_us - ref_host_us) - g * d_us);
       *lo = std::max(*lo, static_cast<double>(s.send_us - ref_host_us) - g * (d_us + 1000.0));
@@ -102,6 +108,9 @@ void ClockModel::fit_sync() {
     }
     gain_ = g;
     gain_from_sync_ = true;
+  }
+  if (!gain_from_sync_) {
+    oldest_us = newest.receive_us - options_.offset_window_us;
   }
   double lo, hi;
   const double width = bounds(g, &lo, &hi);

@@ -40,13 +40,14 @@ class StampUnwrapper {
 };
 
 struct ClockModelOptions {
-  int phase_window = 1200;       // scans in the first-beam phase fit (30 s at 40 Hz)
-  int drift_every = 20;          // scans between drift updates
-  int min_drift_points = 40;     // scans before the drift is estimated
-  int max_drift_points = 48000;  // scans kept for the drift (20 min at 40 Hz)
-  double max_gain_error = 2e-4;  // |gain - 1| beyond this is refused (200 ppm)
-  int max_sync_samples = 1200;   // TM1 round trips kept (60 s at 20 Hz)
-  double min_gain_span_s = 5.0;  // TM1 samples must span this long to give the gain
+  int phase_window = 1200;             // scans in the first-beam phase fit (30 s at 40 Hz)
+  int drift_every = 20;                // scans between drift updates
+  int min_drift_points = 40;           // scans before the drift is estimated
+  int max_drift_points = 48000;        // scans kept for the drift (20 min at 40 Hz)
+  double max_gain_error = 2e-4;        // |gain - 1| beyond this is refused (200 ppm)
+  int max_sync_samples = 1200;         // TM1 round trips kept (60 s at 20 Hz)
+  double min_gain_span_s = 5.0;        // TM1 samples must span this long to give the gain
+  int64_t offset_window_us = 5000000;  // samples used for the offset before the gain is known
 };
 
 struct SyncSample {

@@ -397,6 +397,9 @@ void UrgSession::tick(int64_t now_us) {
       disconnect_ = true;
       return;
     }
+    if (tm1_in_flight_ >= 4 && now_us > next_tm1_us_ + 1'000'000) {
+      tm1_in_flight_ = 0;  // replies lost (damaged, drained): ask again
+    }
     if (options_.tm1_while_streaming_hz > 0 && tm1_streaming_ok_ && now_us >= next_tm1_us_ && tm1_in_flight_ < 4) {
       const auto id = static_cast<std::size_t>(tm1_seq_++ % 64);
       tm1_send_us_.resize(64, 0);
