@@ -67,6 +67,7 @@ bool LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>
   const auto finite = [](double v) { return std::isfinite(v); };
   if (!finite(pose.x) || !finite(pose.y) || !finite(pose.theta) || sigma.size() != 3 ||
       !std::all_of(sigma.begin(), sigma.end(), [](double v) { return std::isfinite(v) && v >= 0.0; })) {
+    ++counters_.invalid_initial_poses;
     return false;
   }
   start_pose_ = pose;
@@ -76,7 +77,8 @@ bool LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>
   return true;
 }
 
-void LocalizerNode::on_scan(const LaserScan& scan) {
+void LocalizerNode::on_scan(const LaserScan& scan, int64_t arrival_utime) {
+  last_scan_arrival_ = arrival_utime;
   switch (scan_order_.check(scan.utime)) {
     case Arrival::kStale:
       ++counters_.stale_scans;
@@ -91,7 +93,7 @@ void LocalizerNode::on_scan(const LaserScan& scan) {
   if (!first_scan_utime_) {
     first_scan_utime_ = scan.utime;
   }
-  pending_.push_back({scan, std::nullopt});
+  pending_.push_back({scan, arrival_utime, std::nullopt});
 }
 
 void LocalizerNode::on_objects(const LineObjectSet& objects) {
@@ -125,7 +127,7 @@ std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
   const Pending& oldest = pending_.front();
   const bool release =
       !needs_objects() || oldest.objects || now_utime == std::numeric_limits<int64_t>::max() ||
-      now_utime - oldest.scan.utime >= microseconds(options_.objects_wait) || pending_.size() > kMaxWaiting ||
+      now_utime - oldest.arrival_utime >= microseconds(options_.objects_wait) || pending_.size() > kMaxWaiting ||
       objects_missing(pending_.back().scan.utime) ||
       // The recognizer works in order: a later scan's objects mean these will not come.
       std::any_of(pending_.begin() + 1, pending_.end(), [](const Pending& p) { return p.objects.has_value(); });
@@ -135,6 +137,10 @@ std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
   const Pending next = std::move(pending_.front());
   pending_.pop_front();
   return process(next);
+}
+
+bool LocalizerNode::scans_missing(int64_t now_utime, int64_t since_utime) const {
+  return now_utime - last_scan_arrival_.value_or(since_utime) > microseconds(options_.scan_timeout);
 }
 
 std::optional<Pose2> LocalizerNode::odometry_at(int64_t utime) const {

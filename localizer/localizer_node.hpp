@@ -26,6 +26,7 @@ struct NodeCounters {
   int64_t scans_without_odometry = 0;
   int64_t resets = 0;            // time went backwards
   int64_t invalid_odometry = 0;  // non-finite pose
+  int64_t invalid_initial_poses = 0;
 };
 
 // Which inputs the last processed scan had to do without.
@@ -43,10 +44,15 @@ class LocalizerNode {
   void on_odometry(int64_t utime, const Pose2& pose);
   // Returns false (and changes nothing) for a non-finite pose or sigma.
   bool on_initial_pose(const Pose2& pose, const std::vector<double>& sigma);
-  void on_scan(const LaserScan& scan);
+  // `arrival_utime`: when the scan reached the process, in the clock `now` of
+  // poll() is given in. A scan waits for its objects measured from its
+  // arrival, so a log played live (old utimes, new arrival times) waits as it did.
+  void on_scan(const LaserScan& scan, int64_t arrival_utime);
+  // A scan that arrives at its own utime (offline callers on the sensor's clock).
+  void on_scan(const LaserScan& scan) { on_scan(scan, scan.utime); }
   void on_objects(const LineObjectSet& objects);
   // Processes the oldest waiting scan if it may go (see above) by `now_utime`
-  // (host time, like the scans' utime); INT64_MAX flushes every waiting scan.
+  // (the arrival times' clock); INT64_MAX flushes every waiting scan.
   // Call until it returns nothing.
   std::optional<UpdateResult> poll(int64_t now_utime);
 
@@ -56,10 +62,13 @@ class LocalizerNode {
   std::size_t waiting_scans() const { return pending_.size(); }
   std::size_t map_memory_bytes() const { return filter_.map_memory_bytes(); }
   bool needs_objects() const { return options_.mode != LocalizerMode::kLfm; }
+  // No scan has arrived for scan_timeout by `now_utime` (or none yet since `since_utime`).
+  bool scans_missing(int64_t now_utime, int64_t since_utime) const;
 
  private:
   struct Pending {
     LaserScan scan;
+    int64_t arrival_utime = 0;
     std::optional<LineObjectSet> objects;
   };
   UpdateResult process(const Pending& pending);
@@ -78,6 +87,7 @@ class LocalizerNode {
   std::optional<int64_t> last_processed_utime_;
   std::optional<int64_t> last_objects_utime_;
   std::optional<int64_t> first_scan_utime_;
+  std::optional<int64_t> last_scan_arrival_;
   std::deque<Pending> pending_;
   InputHealth health_;
   NodeCounters counters_;

@@ -1,5 +1,7 @@
 #include "localizer/localizer_options.hpp"
 
+#include "common/config/config_reader.hpp"
+
 #include <stdexcept>
 
 #include "common/robot/robot_options.hpp"
@@ -45,7 +47,6 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   }
   reader.read("beam_step", &o->beam_step, in_range(1, 10000));
   reader.read("beam_weight", &o->beam_weight, in_range(1e-6, 1.0));
-  reader.read("slfm_lambda", &o->slfm_lambda, positive());
   reader.read("slfm_support", &o->slfm_support, positive());
   reader.read("dirichlet_a1", &o->dirichlet_a1, positive());
   reader.read("dirichlet_a2", &o->dirichlet_a2, positive());
@@ -69,6 +70,7 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   reader.read("uncertain_ess_fraction", &o->uncertain_ess_fraction, probability());
   reader.read("lost_mean_log_likelihood", &o->lost_mean_log_likelihood);
   reader.read("lost_after", &o->lost_after, at_least(1));
+  reader.read("scan_timeout", &o->scan_timeout, in_range(0.01, 60.0));
   reader.read("objects_wait", &o->objects_wait, in_range(0.0, 10.0));
   reader.read("objects_timeout", &o->objects_timeout, in_range(0.01, 60.0));
   reader.read("odometry_timeout", &o->odometry_timeout, in_range(0.01, 60.0));

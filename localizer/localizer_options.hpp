@@ -7,11 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "common/config/config_reader.hpp"
 #include "common/geometry/se2.hpp"
 #include "common/map/likelihood_field.hpp"
 
 namespace slamer {
+
+class ConfigReader;  // common/config/config_reader.hpp: the YAML reader stays out of this header
 
 enum class LocalizerMode { kLfm, kSlfm, kSlamer };
 
@@ -29,8 +30,11 @@ struct LocalizerOptions {
   LikelihoodFieldOptions lfm;
   int beam_step = 1;          // use every n-th beam (1: all of them)
   double beam_weight = 0.05;  // exponent on each beam's likelihood: beams are not independent
-  // SLFM (Eqs. (16)-(17)): exponential model of beams of unknown class.
-  double slfm_lambda = 0.1;   // [1/m]
+  // SLFM (Eqs. (16)-(17)): each beam is weighed in the likelihood field of
+  // the class of the object it hits. Eq. (17)'s exponential term for beams of
+  // unknown class, lambda exp(-lambda r) / (1 - exp(-lambda r_max)), is the
+  // same for every pose, so it cancels when the weights are normalized: such
+  // beams are left out and lambda is no option.
   double slfm_support = 0.1;  // [m] a beam belongs to an object this close to it
   // SLAMER (Eqs. (7)-(9)).
   double dirichlet_a1 = 4.0;      // concentration of the true class
@@ -57,6 +61,7 @@ struct LocalizerOptions {
   double lost_mean_log_likelihood = -3.0;  // per used beam; below for `lost_after` scans: LOST
   int lost_after = 20;
   // Input streams (LocalizerNode).
+  double scan_timeout = 2.0;           // [s] no scan for this long: no pose, PROCESS_STATUS says so
   double objects_wait = 0.1;           // [s] how long a scan waits for its LINE_OBJECTS
   double objects_timeout = 1.0;        // [s] none for this long: the recognizer is missing, scans stop waiting
   double odometry_timeout = 0.5;       // [s] no odometry this close before a scan: odometry is missing

@@ -11,7 +11,9 @@ struct RecognizerProcessConfig {
   RecognizerOptions recognizer;
   std::string lidar_channel = "LIDAR";
   std::string line_objects_channel = "LINE_OBJECTS";
-  int max_beams = 100000;  // larger scans are rejected as malformed
+  // inputs:
+  int max_beams = 100000;     // larger scans are rejected as malformed
+  double scan_timeout = 2.0;  // [s] no scan for this long: PROCESS_STATUS degraded
 };
 void read_options(const ConfigReader& reader, RecognizerProcessConfig* config);
 

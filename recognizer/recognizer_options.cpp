@@ -1,5 +1,7 @@
 #include "recognizer/recognizer_options.hpp"
 
+#include "common/config/config_reader.hpp"
+
 #include <algorithm>
 #include <cmath>
 

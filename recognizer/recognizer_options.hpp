@@ -7,10 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "common/config/config_reader.hpp"
 #include "common/semantic/objects.hpp"
 
 namespace slamer {
+
+class ConfigReader;  // common/config/config_reader.hpp: the YAML reader stays out of this header
 
 // Probabilities for objects whose features fall in a range; the first
 // matching rule gives an object its class distribution.

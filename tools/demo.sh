@@ -24,7 +24,7 @@ cleanup() { for pid in "${pids[@]}"; do kill -INT "$pid" 2>/dev/null || true; do
 trap cleanup EXIT
 
 rm -f "$out"/*.lcm
-lcm-logger --lcm-url="$url" -f -q "$out/live.lcm" & pids+=($!)
+lcm-logger --lcm-url="$url" -f "$out/live.lcm" >"$out/logger.log" 2>&1 & pids+=($!)
 "$bin/slamer-recognizer" --config "$root/config/recognizer.yaml" --lcm-url "$url" 2>"$out/recognizer.log" & pids+=($!)
 "$bin/slamer-localizer" --config "$root/config/localizer.yaml" --lcm-url "$url" 2>"$out/localizer.log" & pids+=($!)
 sleep 1

@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config git
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java default-jdk-headless
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
-  libyaml-cpp-dev libgtest-dev libbenchmark-dev zlib1g-dev iproute2
+  libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev zlib1g-dev iproute2
   "$@"
 )
 
@@ -36,3 +36,18 @@ if ! ip route get 239.255.76.67 >/dev/null 2>&1; then
   "${sudo_cmd[@]}" ip link set lo multicast on
   "${sudo_cmd[@]}" ip route add 224.0.0.0/4 dev lo
 fi
+
+# The kernel's default UDP receive buffer (212992 bytes) is what LCM warns
+# about: a process busy for a few milliseconds then loses datagrams (the
+# demo's lcm-logger lost scans with it). Raise it where this host lets us.
+want=2097152
+for key in net.core.rmem_max net.core.rmem_default; do
+  current=$(sysctl -n "$key" 2>/dev/null || echo "$want")
+  if [ "$current" -lt "$want" ]; then
+    if "${sudo_cmd[@]}" sysctl -q -w "$key=$want" >/dev/null 2>&1; then
+      echo "setup: raised $key from $current to $want bytes (LCM's UDP receive buffer)"
+    else
+      echo "setup: $key is $current bytes and cannot be raised here; LCM may lose messages under load"
+    fi
+  fi
+done

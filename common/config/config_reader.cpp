@@ -1,5 +1,7 @@
 #include "common/config/config_reader.hpp"
 
+#include <map>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -113,6 +115,35 @@ NumberRule probability() {
   return in_range(0.0, 1.0);
 }
 
+namespace {
+
+// yaml-cpp keeps both entries of a key written twice and reads the first:
+// a second, different value would be ignored without a word.
+void reject_duplicate_keys(const YAML::Node& node, const std::string& prefix, const std::string& source) {
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      reject_duplicate_keys(node[i], prefix + "[" + std::to_string(i) + "]", source);
+    }
+    return;
+  }
+  if (!node.IsMap()) {
+    return;
+  }
+  std::map<std::string, int> first_line;
+  for (const auto& entry : node) {
+    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+    const std::string full = prefix.empty() ? key : prefix + "." + key;
+    const int line = entry.first.Mark().line + 1;
+    if (const auto [it, inserted] = first_line.emplace(key, line); !inserted) {
+      throw ConfigError(source + ":" + std::to_string(line) + ": key '" + full + "' appears twice (first on line " +
+                        std::to_string(it->second) + ")");
+    }
+    reject_duplicate_keys(entry.second, full, source);
+  }
+}
+
+}  // namespace
+
 ConfigReader::ConfigReader(std::shared_ptr<Document> document, YAML::Node node, std::string prefix)
     : document_(std::move(document)), node_(std::move(node)), prefix_(std::move(prefix)) {}
 
@@ -131,6 +162,7 @@ ConfigReader ConfigReader::from_string(const std::string& text, const std::strin
     throw ConfigError(source_name + ": expected a mapping of keys at the top level, got " +
                       scalar_text(document->root));
   }
+  reject_duplicate_keys(document->root, "", source_name);
   return ConfigReader(document, document->root, "");
 }
 

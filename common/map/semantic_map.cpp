@@ -1,5 +1,6 @@
 #include "common/map/semantic_map.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,38 @@ namespace {
 
 constexpr std::array<uint8_t, 3> kIsmUnknown{205, 205, 205};
 constexpr std::array<uint8_t, 3> kIsmFree{254, 254, 254};
+
+// For a binary PGM/PPM (P5/P6): what is wrong with its header or size, or ""
+// (also for other formats, which OpenCV checks).
+std::string binary_netpbm_problem(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  in >> magic;
+  if (magic != "P5" && magic != "P6") {
+    return "";
+  }
+  long long fields[3] = {};  // width, height, maxval; '#' comments may come between them
+  for (long long& field : fields) {
+    while (in >> std::ws && in.peek() == '#') {
+      std::string comment;
+      std::getline(in, comment);
+    }
+    if (!(in >> field) || field <= 0) {
+      return "has a damaged header";
+    }
+  }
+  in.get();  // the one whitespace byte before the pixels
+  const long long channels = magic == "P6" ? 3 : 1;
+  const long long expected = fields[0] * fields[1] * channels * (fields[2] > 255 ? 2 : 1);
+  const long long start = static_cast<long long>(in.tellg());
+  in.seekg(0, std::ios::end);
+  const long long size = static_cast<long long>(in.tellg());
+  if (start < 0 || size - start < expected) {
+    return "is cut short: " + std::to_string(fields[0]) + " x " + std::to_string(fields[1]) + " pixels need " +
+           std::to_string(expected) + " bytes, the file has " + std::to_string(std::max(0LL, size - start));
+  }
+  return "";
+}
 
 cv::Mat read_image(const ConfigReader& reader, std::string_view key, const std::string& path) {
   if (path.empty()) {
@@ -32,6 +65,9 @@ cv::Mat read_image(const ConfigReader& reader, std::string_view key, const std::
   const bool netpbm = magic[0] == 'P' && (magic[1] == '2' || magic[1] == '3' || magic[1] == '5' || magic[1] == '6');
   if (!png && !netpbm) {
     reader.fail(key, "image '" + full + "' is not a PGM/PPM or PNG file");
+  }
+  if (const std::string problem = binary_netpbm_problem(full); !problem.empty()) {
+    reader.fail(key, "image '" + full + "' " + problem);  // before OpenCV, which would print lines of its own
   }
   cv::Mat image;
   try {

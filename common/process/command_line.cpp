@@ -16,14 +16,20 @@ void CommandLine::add_option(const std::string& name, const std::string& value_n
   if (declared_.count(name) == 0) {
     order_.push_back(name);
   }
-  declared_[name] = Declared{true, value_name, help, default_value};
+  declared_[name] = Declared{true, value_name, help, default_value, 1};
+}
+
+void CommandLine::add_multi_option(const std::string& name, std::size_t count, const std::string& value_names,
+                                   const std::string& help) {
+  add_option(name, value_names, help);
+  declared_[name].value_count = count;
 }
 
 void CommandLine::add_flag(const std::string& name, const std::string& help) {
   if (declared_.count(name) == 0) {
     order_.push_back(name);
   }
-  declared_[name] = Declared{false, "", help, ""};
+  declared_[name] = Declared{false, "", help, "", 0};
 }
 
 void CommandLine::set_positional(const std::string& name, const std::string& help, std::size_t min_count,
@@ -70,6 +76,16 @@ bool CommandLine::parse(int argc, const char* const argv[], std::ostream& help_o
         throw CommandLineError("option '--" + name + "' takes no value");
       }
       given_[name] = "1";
+    } else if (it->second.value_count > 1) {
+      if (equals != std::string::npos || i + static_cast<int>(it->second.value_count) >= argc) {
+        throw CommandLineError("option '--" + name + "' needs " + std::to_string(it->second.value_count) + " values " +
+                               it->second.value_name);
+      }
+      std::string values;
+      for (std::size_t k = 0; k < it->second.value_count; ++k) {
+        values += (k == 0 ? "" : " ") + std::string(argv[++i]);
+      }
+      given_[name] = values;
     } else if (equals != std::string::npos) {
       given_[name] = arg.substr(equals + 1);
     } else if (i + 1 < argc) {
@@ -124,6 +140,21 @@ int64_t CommandLine::get_int(const std::string& name) const {
     throw CommandLineError("option '--" + name + "': expected an integer, got '" + text + "'");
   }
   return value;
+}
+
+std::vector<double> CommandLine::get_doubles(const std::string& name) const {
+  std::istringstream words(get(name));
+  std::vector<double> values;
+  for (std::string word; words >> word;) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+    if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value)) {
+      throw CommandLineError("option '--" + name + "': expected numbers " + declared(name).value_name + ", got '" +
+                             word + "'");
+    }
+    values.push_back(value);
+  }
+  return values;
 }
 
 std::string CommandLine::usage() const {

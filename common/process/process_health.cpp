@@ -29,6 +29,10 @@ void ProcessHealth::count_drop(const std::string& channel, int8_t direction, int
   channels_[{channel, direction}].drops += count;
 }
 
+void ProcessHealth::add_drop_source(const std::string& channel, int8_t direction, std::function<int64_t()> drops) {
+  channels_[{channel, direction}].drop_sources.push_back(std::move(drops));
+}
+
 void ProcessHealth::count_handler_error(const std::string& what) {
   ++unreported_handler_errors_;
   last_handler_error_ = what;
@@ -64,11 +68,14 @@ process_status_t ProcessHealth::status(int64_t now_utime) const {
     stats.messages = counters.messages;
     stats.decode_errors = counters.decode_errors;
     stats.drops = counters.drops;
+    for (const auto& source : counters.drop_sources) {
+      stats.drops += source();
+    }
     stats.last_utime = counters.last_utime;
     status.channels.push_back(stats);
     (key.second == channel_stats_t::SUBSCRIBED ? status.messages_in : status.messages_out) += counters.messages;
     status.decode_errors += counters.decode_errors;
-    status.drops += counters.drops;
+    status.drops += stats.drops;
   }
   status.nchannels = static_cast<int32_t>(status.channels.size());
   return status;

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "common/process/decode.hpp"
 #include "common/stats/rolling_percentiles.hpp"
@@ -23,6 +25,9 @@ class ProcessHealth {
   void count_message(const std::string& channel, int8_t direction, int64_t utime);
   void count_decode_error(const std::string& channel, DecodeStatus status, int64_t utime);
   void count_drop(const std::string& channel, int8_t direction, int64_t count = 1);
+  // Drops a library counts itself (e.g. stale scans in a node): read when the
+  // status is made and added to the channel's drops, so they are kept in one place.
+  void add_drop_source(const std::string& channel, int8_t direction, std::function<int64_t()> drops);
   void count_handler_error(const std::string& what);
   void record_processing_time(double seconds);
   void set_state(int8_t state, std::string message);
@@ -43,6 +48,7 @@ class ProcessHealth {
     int64_t last_utime = 0;
     int64_t unreported_errors = 0;
     DecodeStatus last_error = DecodeStatus::kOk;
+    std::vector<std::function<int64_t()>> drop_sources;
   };
   using ChannelKey = std::pair<std::string, int8_t>;
 

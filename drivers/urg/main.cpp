@@ -1,13 +1,15 @@
 // slamer-urg: a Hokuyo URG (SCIP 2.0 over TCP or serial) -> laser_scan_t on LIDAR.
-// The sensor I/O runs on its own thread (bytes are timestamped as they arrive);
-// the LCM process publishes its scans and PROCESS_STATUS.
+// The sensor I/O runs on its own thread (bytes are timestamped as they arrive,
+// whatever the bus is doing); the bus (live LCM) publishes its scans and
+// PROCESS_STATUS from its timers.
 #include <atomic>
 #include <cstdio>
 #include <mutex>
 #include <thread>
 
+#include "common/process/bus.hpp"
 #include "common/process/convert.hpp"
-#include "common/process/lcm_process.hpp"
+#include "common/process/process_main.hpp"
 #include "drivers/urg/urg_driver.hpp"
 #include "drivers/urg/urg_options.hpp"
 #include "slamer/laser_scan_t.hpp"
@@ -36,8 +38,10 @@ std::string describe(const UrgDriverStatus& s, double rate_hz) {
   return text;
 }
 
-int run(const UrgProcessConfig& config, const std::string& lcm_url) {
-  LcmProcess process("slamer-urg", lcm_url, config.process);
+int run(const UrgProcessConfig& config, const CommandLine& cli) {
+  const std::unique_ptr<Bus> bus = open_bus(cli, "slamer-urg", config.process);
+  Bus& process = *bus;
+  process.advertise(config.lidar_channel);
   std::mutex mutex;
   std::vector<LaserScan> queue;
   UrgDriverStatus status;
@@ -45,7 +49,7 @@ int run(const UrgProcessConfig& config, const std::string& lcm_url) {
   std::thread io([&] {
     UrgDriver driver(config);
     while (!stop) {
-      driver.step(5);
+      driver.step(10);
       std::vector<LaserScan> scans = driver.take_scans();
       std::lock_guard<std::mutex> lock(mutex);
       for (auto& s : scans) {
@@ -54,7 +58,7 @@ int run(const UrgProcessConfig& config, const std::string& lcm_url) {
       status = driver.status();
     }
   });
-  process.every(0.005, [&] {
+  process.every(0.01, [&] {
     std::vector<LaserScan> scans;
     {
       std::lock_guard<std::mutex> lock(mutex);
@@ -65,7 +69,7 @@ int run(const UrgProcessConfig& config, const std::string& lcm_url) {
     }
   });
   int64_t last_scans = 0, last_refused = 0, last_scans_ok = 0;
-  int64_t last_time = now_utime();
+  int64_t last_time = host_now_us();
   // The state is refreshed 4x per PROCESS_STATUS so it is never a second stale.
   process.every(0.25, [&] {
     UrgDriverStatus s;
@@ -73,7 +77,7 @@ int run(const UrgProcessConfig& config, const std::string& lcm_url) {
       std::lock_guard<std::mutex> lock(mutex);
       s = status;
     }
-    const int64_t now = now_utime();
+    const int64_t now = process.now();
     const double rate = static_cast<double>(s.counters.scans - last_scans) * 1e6 / static_cast<double>(now - last_time);
     const int64_t refused = s.counters.checksum + s.counters.truncated + s.counters.length + s.counters.bad_char;
     if (refused > last_refused) {
@@ -120,6 +124,6 @@ int main(int argc, char** argv) {
         if (cli.has("device")) {
           config.connection.device = cli.get("device");
         }
-        return slamer::urg::run(config, cli.get("lcm-url"));
+        return slamer::urg::run(config, cli);
       });
 }

@@ -35,6 +35,25 @@ TEST(CommandLine, OptionsFlagsAndPositionals) {
   EXPECT_EQ(cli.positional(), std::vector<std::string>{"x.lcm"});
 }
 
+TEST(CommandLine, MultiValueOptionTakesExactlyItsCountIncludingNegativeNumbers) {
+  CommandLine cli = make();
+  cli.add_multi_option("initial-pose", 3, "X Y THETA", "start pose");
+  ASSERT_TRUE(parse(cli, {"--initial-pose", "1.5", "-2", "-0.25", "x.lcm"}));
+  const std::vector<double> pose = cli.get_doubles("initial-pose");
+  ASSERT_EQ(pose.size(), 3u);
+  EXPECT_DOUBLE_EQ(pose[0], 1.5);
+  EXPECT_DOUBLE_EQ(pose[1], -2.0);
+  EXPECT_DOUBLE_EQ(pose[2], -0.25);
+  EXPECT_EQ(cli.positional(), std::vector<std::string>{"x.lcm"});
+  CommandLine short_of_values = make();
+  short_of_values.add_multi_option("initial-pose", 3, "X Y THETA", "start pose");
+  EXPECT_THROW(parse(short_of_values, {"--initial-pose", "1", "2"}), CommandLineError);
+  CommandLine not_numbers = make();
+  not_numbers.add_multi_option("initial-pose", 3, "X Y THETA", "start pose");
+  ASSERT_TRUE(parse(not_numbers, {"--initial-pose", "1", "x", "2"}));
+  EXPECT_THROW(not_numbers.get_doubles("initial-pose"), CommandLineError);
+}
+
 TEST(CommandLine, DefaultsWhenAbsent) {
   CommandLine cli = make();
   ASSERT_TRUE(parse(cli, {}));

@@ -104,6 +104,15 @@ TEST(ConfigReader, UnknownKeysAreRejectedWithTheirPathAndLine) {
   EXPECT_EQ(error_of("radar: {}\n"), "test.yaml:1: unknown key 'radar'");
 }
 
+TEST(ConfigReader, AKeyWrittenTwiceIsRejectedWithBothLines) {
+  EXPECT_EQ(error_of("mode: lfm\nalpha: 0.3\nmode: slamer\n"),
+            "test.yaml:3: key 'mode' appears twice (first on line 1)");
+  EXPECT_EQ(error_of("lidar:\n  beams: 2\n  frame: a\n  beams: 3\n"),
+            "test.yaml:4: key 'lidar.beams' appears twice (first on line 2)");
+  EXPECT_EQ(error_of("classes:\n  - {name: door, name: fence}\n"),
+            "test.yaml:2: key 'classes[0].name' appears twice (first on line 2)");
+}
+
 TEST(ConfigReader, WrongTypesNameTheKey) {
   EXPECT_EQ(error_of("alpha: high\n"), "test.yaml:1: key 'alpha': expected a number in [0, 1], got 'high'");
   EXPECT_EQ(error_of("lidar:\n  beams: 2.5\n"),

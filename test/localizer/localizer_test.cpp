@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <numbers>
 
@@ -200,20 +202,52 @@ TEST(ParticleFilter, SlfmConvergesOnTheSmallWorld) {
   expect_converges(LocalizerMode::kSlfm);
 }
 
-TEST(ParticleFilter, WeightsStayNormalizedAndResamplingKeepsTheBest) {
+// Fraction of the particles within `radius` of (x, y).
+double fraction_near(const std::vector<Particle>& particles, double x, double y, double radius) {
+  const auto near = std::count_if(particles.begin(), particles.end(),
+                                  [&](const Particle& p) { return std::hypot(p.pose.x - x, p.pose.y - y) < radius; });
+  return static_cast<double>(near) / static_cast<double>(particles.size());
+}
+
+TEST(ParticleFilter, WeightsAreNormalizedWithoutResampling) {
   const SmallWorld w;
   LocalizerOptions options;
   options.particles = 200;
+  options.resample_threshold = 0.0;  // never: the weights themselves are under test
   ParticleFilter filter(w.map, options, w.robot.lidar.mount);
   filter.initialize({2.0, 3.0, 0.0}, {1.0, 1.0, 0.5});
   const UpdateResult result = filter.update(w.scan_at({2.0, 3.0, 0.0}), nullptr);
+  ASSERT_FALSE(result.resampled);
+  double sum = 0.0;
+  double largest = 0.0;
+  for (const Particle& p : filter.particles()) {
+    sum += std::exp(p.log_weight);
+    largest = std::max(largest, std::exp(p.log_weight));
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-9);
+  EXPECT_GT(largest, 5.0 / 200);  // the scan told the particles apart: not 1/N each
+}
+
+TEST(ParticleFilter, ResamplingKeepsTheParticlesThatFitTheScan) {
+  const SmallWorld w;
+  LocalizerOptions options;
+  options.particles = 500;
+  ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+  filter.initialize({2.0, 3.0, 0.0}, {1.0, 1.0, 0.5});
+  const double before = fraction_near(filter.particles(), 2.0, 3.0, 0.3);
+  const UpdateResult result = filter.update(w.scan_at({2.0, 3.0, 0.0}), nullptr);
+  ASSERT_TRUE(result.resampled);  // spread particles, one scan: the ESS collapses
+  const double after = fraction_near(filter.particles(), 2.0, 3.0, 0.3);
   double sum = 0.0;
   for (const Particle& p : filter.particles()) {
     sum += std::exp(p.log_weight);
   }
   EXPECT_NEAR(sum, 1.0, 1e-9);
-  EXPECT_TRUE(result.resampled);  // spread particles, one scan: the ESS collapses
-  EXPECT_LT(std::hypot(result.estimate.pose.x - 2.0, result.estimate.pose.y - 3.0), 0.6);
+  // Resampling by weight concentrates the cloud where the scan fits; a wrong
+  // pick (uniform, or the worst) would leave about `before` (4 % at 1 m spread).
+  EXPECT_LT(before, 0.08);
+  EXPECT_GT(after, 0.4) << "before " << before;
+  EXPECT_LT(std::hypot(result.estimate.pose.x - 2.0, result.estimate.pose.y - 3.0), 0.3);
 }
 
 }  // namespace

@@ -13,6 +13,8 @@
 #include "common/map/likelihood_field.hpp"
 #include "common/map/semantic_map.hpp"
 
+#include "test/support/child_process.hpp"
+
 namespace slamer {
 namespace {
 
@@ -316,6 +318,16 @@ TEST(SemanticMap, BadMapsGiveOneLineNamingFileAndProblem) {
   dir.write("bad.yaml", "image: truncated.png\nresolution: 0.1\norigin: [0, 0, 0]\n");
   EXPECT_EQ(load_error(yaml), yaml + ":1: key 'image': cannot decode image '" + dir.file("truncated.png") +
                                   "' (not a PGM/PNG OpenCV can read?)");
+
+  // A map_server PGM cut in half (a copy that did not finish): said before OpenCV prints lines of its own.
+  const std::string whole = test::read_file(dir.file("map.pgm"));
+  dir.write("cut.pgm", whole.substr(0, whole.size() - 5));
+  dir.write("bad.yaml", "image: cut.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":1: key 'image': image '" + dir.file("cut.pgm") +
+                                  "' is cut short: 4 x 3 pixels need 12 bytes, the file has 7");
+  dir.write("header.pgm", "P5\n4 x\n255\n");
+  dir.write("bad.yaml", "image: header.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":1: key 'image': image '" + dir.file("header.pgm") + "' has a damaged header");
 
   cv::imwrite(dir.file("small.png"), cv::Mat(2, 2, CV_8UC3, cv::Scalar(254, 254, 254)));
   dir.write("bad.yaml",

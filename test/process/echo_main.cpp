@@ -1,7 +1,8 @@
 // slamer-test-echo: a process on the common skeleton, for the process tests.
 // It subscribes to the stack's input channels with their real types and
 // republishes every message it decodes on "<CHANNEL>_ECHO".
-#include "common/process/lcm_process.hpp"
+#include "common/process/lcm_bus.hpp"
+#include "common/process/process_main.hpp"
 #include "slamer/initial_pose_t.hpp"
 #include "slamer/laser_scan_t.hpp"
 #include "slamer/line_objects_t.hpp"
@@ -19,7 +20,7 @@ void read_options(const slamer::ConfigReader& reader, Config* config) {
 }
 
 template <class Msg>
-void echo(slamer::LcmProcess& process, const std::string& channel) {
+void echo(slamer::Bus& process, const std::string& channel) {
   process.subscribe<Msg>(
       channel,
       [&process, channel](const Msg& msg, const slamer::ReceiveInfo&) { process.publish(channel + "_ECHO", msg); },
@@ -34,7 +35,7 @@ int main(int argc, char** argv) {
       [](slamer::CommandLine&) {},
       [](const slamer::CommandLine& cli) {
         const auto config = slamer::load_config<Config>(cli);
-        slamer::LcmProcess process("slamer-test-echo", cli.get("lcm-url"), config.process);
+        slamer::LcmBus process("slamer-test-echo", cli.get("lcm-url"), config.process);
         echo<slamer::laser_scan_t>(process, "LIDAR");
         echo<slamer::odometry_t>(process, "ODOMETRY");
         echo<slamer::wheel_encoders_t>(process, "WHEEL_ENCODERS");

@@ -4,11 +4,12 @@
 #include <signal.h>
 #include <lcm/lcm-cpp.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <functional>
 #include <map>
 #include <random>
-#include <regex>
 #include <thread>
 
 #include "common/process/decode.hpp"
@@ -132,12 +133,17 @@ TEST(Processes, TwoProcessesExchangeMessagesOverMulticast) {
   const std::optional<int> status_exit = status.wait(8.0);
   ASSERT_TRUE(status_exit.has_value()) << "slamer-status did not finish";
   EXPECT_EQ(*status_exit, 0) << status.stderr_text();
-  const std::string json = status.stdout_text();
-  const std::regex lidar_in(
-      R"re("process": "slamer-test-echo".*"channel": "LIDAR", "direction": "in", "messages": ([0-9]+))re");
-  std::smatch match;
-  ASSERT_TRUE(std::regex_search(json, match, lidar_in)) << json;
-  EXPECT_GE(std::stoll(match[1].str()), 1);
+  const nlohmann::json json = nlohmann::json::parse(status.stdout_text());
+  int64_t lidar_in = -1;
+  for (const nlohmann::json& process : json.at("processes")) {
+    for (const nlohmann::json& channel : process.at("channels")) {
+      if (process.at("process") == "slamer-test-echo" && channel.at("channel") == "LIDAR" &&
+          channel.at("direction") == "in") {
+        lidar_in = channel.at("messages").get<int64_t>();
+      }
+    }
+  }
+  EXPECT_GE(lidar_in, 1) << json.dump();
 
   echo.signal(SIGTERM);
   const std::optional<int> echo_exit = echo.wait(3.0);

@@ -52,6 +52,21 @@ std::map<std::string, std::vector<int64_t>> utimes_by_channel(const std::string&
 }
 
 // LIDAR drops in the last PROCESS_STATUS of slamer-recognizer in a log, -1 if none.
+// The message of the recognizer's last PROCESS_STATUS in a log.
+std::string recognizer_status_message(const std::string& path) {
+  std::string message;
+  lcm::LogFile log(path, "r");
+  for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
+    process_status_t status{};
+    if (e->channel == "PROCESS_STATUS" &&
+        decode_message(e->data, static_cast<std::size_t>(e->datalen), &status) == DecodeStatus::kOk &&
+        status.process == "slamer-recognizer") {
+      message = status.message;
+    }
+  }
+  return message;
+}
+
 int64_t recognizer_drops(const std::string& path) {
   int64_t dropped = -1;
   lcm::LogFile log(path, "r");
@@ -83,8 +98,21 @@ TEST(SlamerRecognizer, ReplayIsDeterministicAndCopiesEveryChannel) {
   const auto input = utimes_by_channel(in);
   const auto output = utimes_by_channel(a);
   for (const auto& [channel, utimes] : input) {
-    EXPECT_EQ(output.at(channel), utimes) << channel << " not copied through unchanged";
+    if (channel != "PROCESS_STATUS") {  // there the recognizer's own go in too
+      EXPECT_EQ(output.at(channel), utimes) << channel << " not copied through unchanged";
+    }
   }
+  int64_t own_statuses = 0;
+  lcm::LogFile out_log(a, "r");
+  for (const lcm::LogEvent* e = out_log.readNextEvent(); e != nullptr; e = out_log.readNextEvent()) {
+    process_status_t status{};
+    own_statuses += e->channel == "PROCESS_STATUS" &&
+                    decode_message(e->data, static_cast<std::size_t>(e->datalen), &status) == DecodeStatus::kOk &&
+                    status.process == "slamer-recognizer";
+  }
+  EXPECT_GE(own_statuses, 9);  // the replay's PROCESS_STATUS: 8 s of log, one a second
+  EXPECT_EQ(output.at("PROCESS_STATUS").size(),
+            (input.count("PROCESS_STATUS") ? input.at("PROCESS_STATUS").size() : 0u) + own_statuses);
   EXPECT_EQ(output.at("LINE_OBJECTS"), input.at("LIDAR"));  // one result per scan, with its utime
   test::ChildProcess same(test::binary_path("slamer-recognizer"), {"--replay", in, "--out", in});
   EXPECT_EQ(same.wait(10.0), std::optional<int>(1));
@@ -141,7 +169,8 @@ TEST(SlamerRecognizer, LiveWithTheRealLogplayerAndLogger) {
 }
 
 // Scans sent slowly with seq gaps, a repeat and an older one: each accepted
-// scan gives one LINE_OBJECTS, each missed or rejected one is one drop.
+// scan gives one LINE_OBJECTS, each rejected one is one drop, and the scans
+// the seq gap says never arrived are reported as missed, not as drops.
 TEST(SlamerRecognizer, CountsMissedAndOutOfOrderScans) {
   const std::string url = test::unique_lcm_url(12);
   const std::string recorded = kBinary + "/rec_drops_recorded.lcm";
@@ -170,7 +199,7 @@ TEST(SlamerRecognizer, CountsMissedAndOutOfOrderScans) {
   const int64_t t0 = 1'700'000'000'000'000;
   send(0, t0);
   send(1, t0 + 25'000);
-  send(4, t0 + 100'000);  // seq 2 and 3 never arrived: 2 drops
+  send(4, t0 + 100'000);  // seq 2 and 3 never arrived: 2 missed
   send(4, t0 + 100'000);  // the same scan again: 1 drop
   send(3, t0 + 75'000);   // older than the last: 1 drop
   send(5, t0 + 125'000);
@@ -182,7 +211,8 @@ TEST(SlamerRecognizer, CountsMissedAndOutOfOrderScans) {
   const auto got = utimes_by_channel(recorded);
   ASSERT_TRUE(got.count("LINE_OBJECTS") != 0) << recognizer.stderr_text();
   EXPECT_EQ(got.at("LINE_OBJECTS"), (std::vector<int64_t>{t0, t0 + 25'000, t0 + 100'000, t0 + 125'000}));
-  EXPECT_EQ(recognizer_drops(recorded), 4);
+  EXPECT_EQ(recognizer_drops(recorded), 2);
+  EXPECT_EQ(recognizer_status_message(recorded), "2 scans missed (gaps in seq)");
   std::remove(recorded.c_str());
 }
 

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "test/support/child_process.hpp"
 
@@ -81,9 +82,10 @@ TEST(SlamerEval, GroundTruthScoresZeroAndOdometryDrifts) {
   test::ChildProcess truth(test::binary_path("slamer-eval"),
                            {"--world", world, "--config", config, "--estimate", "GROUND_TRUTH", "--json", log});
   ASSERT_EQ(truth.wait(60.0), std::optional<int>(0)) << truth.stderr_text();
-  const std::string json = truth.stdout_text();
-  EXPECT_NE(json.find("\"position_mean_m\": 0, \"position_std_m\": 0, \"position_max_m\": 0"), std::string::npos)
-      << json;
+  const nlohmann::json pose = nlohmann::json::parse(truth.stdout_text()).at("runs").at(0).at("pose");
+  EXPECT_EQ(pose.at("position_mean_m").get<double>(), 0.0) << pose.dump();
+  EXPECT_EQ(pose.at("position_std_m").get<double>(), 0.0) << pose.dump();
+  EXPECT_EQ(pose.at("position_max_m").get<double>(), 0.0) << pose.dump();
   const std::string plot = std::string(SLAMER_BINARY_DIR) + "/sim_eval.png";
   test::ChildProcess odometry(test::binary_path("slamer-eval"),
                               {"--world", world, "--estimate", "ODOMETRY", "--plot", plot, log});

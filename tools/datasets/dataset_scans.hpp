@@ -1,10 +1,7 @@
-// Readers of the real 2D laser datasets in ../shared/datasets (see each
-// SOURCE.txt): CARMEN "FLASER" lines (180 beams from -90 deg, 1 deg apart,
-// metres; aces saturates at 50 m, fr079 writes 81.91 m for no return), CMU
-// 16-831 "L" lines (180 beams over 180 deg, centimetres, 8183/8191 = no
-// return) and the Mines exp1.dat (682 beams over 240 deg, millimetres,
-// 0 = no return). Plain or gzip files. Lines that do not parse are counted
-// and skipped, never guessed.
+// The scans alone of the real 2D laser datasets in ../shared/datasets:
+// CARMEN FLASER / ROBOTLASER1 lines, CMU 16-831 "L" lines and the Mines
+// exp1.dat lines (dataset_records.hpp has every format's details). Plain or
+// gzip files. Lines that do not parse are counted and skipped, never guessed.
 #pragma once
 
 #include <cstdint>
@@ -12,10 +9,9 @@
 #include <vector>
 
 #include "common/sensors/laser_scan.hpp"
+#include "tools/datasets/dataset_records.hpp"
 
 namespace slamer {
-
-enum class DatasetFormat { kCarmen, kCmu, kMines };
 
 struct DatasetScans {
   std::vector<LaserScan> scans;

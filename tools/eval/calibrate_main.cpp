@@ -12,7 +12,7 @@
 #include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
 #include "common/process/event_log.hpp"
-#include "common/process/lcm_process.hpp"
+#include "common/process/process_main.hpp"
 #include "common/process/log.hpp"
 #include "recognizer/line_recognizer.hpp"
 #include "recognizer/recognizer_config.hpp"

@@ -9,7 +9,7 @@
 #include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
 #include "common/process/event_log.hpp"
-#include "common/process/lcm_process.hpp"
+#include "common/process/process_main.hpp"
 #include "common/process/log.hpp"
 #include "slamer/line_objects_t.hpp"
 #include "slamer/odometry_t.hpp"

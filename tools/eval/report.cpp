@@ -1,10 +1,9 @@
 #include "tools/eval/report.hpp"
 
-#include "common/process/json.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -26,23 +25,17 @@ std::string accuracy_cell(const AccuracyStats& s, double value) {
   return s.scans == 0 ? "n/a" : format("%.2f %%", 100.0 * value);
 }
 
-std::string json_number(double v) {
-  if (!std::isfinite(v)) {
-    return "null";
-  }
-  std::ostringstream out;
-  out.precision(10);
-  out << v;
-  return out.str();
+// Non-finite numbers are JSON null.
+nlohmann::json json_number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
-std::string accuracy_json(const AccuracyStats& s) {
+nlohmann::json accuracy_json(const AccuracyStats& s) {
   if (s.scans == 0) {
-    return "null";
+    return nullptr;
   }
-  return "{\"scans\": " + std::to_string(s.scans) + ", \"objects\": " + std::to_string(s.objects) +
-         ", \"mean\": " + json_number(s.mean) + ", \"std\": " + json_number(s.std) +
-         ", \"min\": " + json_number(s.min) + ", \"max\": " + json_number(s.max) + "}";
+  return {{"scans", s.scans},          {"objects", s.objects},      {"mean", json_number(s.mean)},
+          {"std", json_number(s.std)}, {"min", json_number(s.min)}, {"max", json_number(s.max)}};
 }
 
 }  // namespace
@@ -110,28 +103,29 @@ std::string render_table(const std::vector<NamedRun>& runs, const EvalOptions& o
 }
 
 std::string render_json(const std::vector<NamedRun>& runs, const EvalOptions& options) {
-  std::ostringstream out;
-  out << "{\"lost_threshold\": " << json_number(options.lost_threshold) << ", \"runs\": [";
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const RunScores& s = runs[i].scores;
+  nlohmann::json out{{"lost_threshold", json_number(options.lost_threshold)}, {"runs", nlohmann::json::array()}};
+  for (const NamedRun& run : runs) {
+    const RunScores& s = run.scores;
     const PoseErrorStats& p = s.pose;
-    out << (i == 0 ? "" : ", ") << "{\"name\": " << json_quote(runs[i].name) << ", \"pose\": ";
-    if (p.samples == 0) {
-      out << "null";
-    } else {
-      out << "{\"samples\": " << p.samples << ", \"position_mean_m\": " << json_number(p.position_mean)
-          << ", \"position_std_m\": " << json_number(p.position_std)
-          << ", \"position_max_m\": " << json_number(p.position_max)
-          << ", \"heading_mean_rad\": " << json_number(p.heading_mean)
-          << ", \"heading_std_rad\": " << json_number(p.heading_std)
-          << ", \"heading_max_rad\": " << json_number(p.heading_max)
-          << ", \"lost_fraction\": " << json_number(p.lost_fraction) << "}";
+    nlohmann::json pose = nullptr;
+    if (p.samples > 0) {
+      pose = {{"samples", p.samples},
+              {"position_mean_m", json_number(p.position_mean)},
+              {"position_std_m", json_number(p.position_std)},
+              {"position_max_m", json_number(p.position_max)},
+              {"heading_mean_rad", json_number(p.heading_mean)},
+              {"heading_std_rad", json_number(p.heading_std)},
+              {"heading_max_rad", json_number(p.heading_max)},
+              {"lost_fraction", json_number(p.lost_fraction)}};
     }
-    out << ", \"recognizer\": " << accuracy_json(s.recognizer) << ", \"map_based\": " << accuracy_json(s.map_based)
-        << ", \"slamer\": " << accuracy_json(s.slamer) << "}";
+    out["runs"].push_back({{"name", run.name},
+                           {"pose", pose},
+                           {"recognizer", accuracy_json(s.recognizer)},
+                           {"map_based", accuracy_json(s.map_based)},
+                           {"slamer", accuracy_json(s.slamer)}});
   }
-  out << "]}\n";
-  return out.str();
+  // Invalid UTF-8 in a run name (a file name) is replaced, not an exception.
+  return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 void write_error_plot(const std::vector<NamedRun>& runs, const std::string& png_path) {

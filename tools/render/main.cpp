@@ -14,7 +14,7 @@
 #include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
 #include "common/process/event_log.hpp"
-#include "common/process/lcm_process.hpp"
+#include "common/process/process_main.hpp"
 #include "common/process/log.hpp"
 #include "common/robot/robot_options.hpp"
 #include "slamer/line_objects_t.hpp"

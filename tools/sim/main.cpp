@@ -5,11 +5,12 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
-#include <lcm/lcm-cpp.hpp>
 
 #include "common/process/convert.hpp"
-#include "common/process/lcm_process.hpp"
+#include "common/process/lcm_bus.hpp"
 #include "common/process/log.hpp"
+#include "common/process/log_bus.hpp"
+#include "common/process/process_main.hpp"
 #include "tools/sim/sim_config.hpp"
 
 namespace slamer {
@@ -49,56 +50,37 @@ class MessageSink : public SimulatorSink {
   int64_t scans_ = 0;
 };
 
-int run_to_log(Simulator& sim, const SimProcessConfig& config, const std::string& path) {
-  lcm::LogFile log(path, "w");
-  if (!log.good()) {
-    throw std::runtime_error("cannot write " + path);
-  }
+// Steps the simulation in bus time (at `speed` times real time when live; as
+// fast as the CPU allows into a log) until the path is done.
+int run(Simulator& sim, const SimProcessConfig& config, Bus& bus, double speed) {
   MessageSink sink(config.channels, [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t t) {
-    lcm::LogEvent event;
-    event.timestamp = t;
-    event.channel = channel;
-    event.datalen = static_cast<int32_t>(bytes.size());
-    event.data = const_cast<uint8_t*>(bytes.data());
-    if (log.writeEvent(&event) != 0) {
-      throw std::runtime_error("cannot write to " + path);
-    }
+    bus.publish_raw(channel, bytes, t);
   });
-  const bool terminal = isatty(STDERR_FILENO) != 0;
+  for (const std::string& channel : {config.channels.lidar, config.channels.wheel_encoders, config.channels.odometry,
+                                     config.channels.ground_truth}) {
+    bus.advertise(channel);
+  }
+  const int64_t start = bus.now();
+  const bool terminal = !bus.is_live() && isatty(STDERR_FILENO) != 0;
   double next_report = 0.0;
-  while (sim.step(sink)) {
+  bool finished = false;
+  bus.every(config.sim.step / speed, [&] {
+    // Catch up with the bus clock: every step whose time has come.
+    const double target = static_cast<double>(bus.now() - start) * 1e-6 * speed;
+    while (!finished && sim.time() < target) {
+      finished = !sim.step(sink);
+    }
     if (terminal && sim.time() >= next_report) {
       std::fprintf(stderr, "\rslamer-sim: %7.1f s simulated, path %3.0f%% done", sim.time(), 100.0 * sim.progress());
       next_report += 5.0;
     }
-  }
-  if (terminal) {
-    std::fprintf(stderr, "\n");
-  }
-  log_line("slamer-sim", LogLevel::kInfo,
-           "wrote " + std::to_string(sink.scans()) + " scans, " + std::to_string(sim.time()) + " s, to " + path);
-  return 0;
-}
-
-int run_live(Simulator& sim, const SimProcessConfig& config, const std::string& lcm_url, double speed) {
-  LcmProcess process("slamer-sim", lcm_url, config.process);
-  MessageSink sink(config.channels, [&](const std::string& channel, const std::vector<uint8_t>& bytes, int64_t) {
-    process.publish_raw(channel, bytes);
-  });
-  const int64_t wall_start = now_utime();
-  bool finished = false;
-  process.every(config.sim.step / speed, [&] {
-    // Catch up with the wall clock: every step whose time has come.
-    const double target = static_cast<double>(now_utime() - wall_start) * 1e-6 * speed;
-    while (!finished && sim.time() < target) {
-      finished = !sim.step(sink);
-    }
     if (finished) {
-      process.log_info("path finished after " + std::to_string(sim.time()) + " s");
-      process.stop();
+      bus.log_info((terminal ? "\n" : "") + std::string("path finished after ") + std::to_string(sim.time()) + " s, " +
+                   std::to_string(sink.scans()) + " scans");
+      bus.stop();
     }
   });
-  return process.run();
+  return bus.run();
 }
 
 }  // namespace
@@ -134,11 +116,14 @@ int main(int argc, char** argv) {
           slamer::log_line("slamer-sim", slamer::LogLevel::kWarning, warning);
         }
         const slamer::TrueWorld world(std::move(map), world_options, world_file);
-        if (!cli.has("out")) {
-          config.sim.start_utime = slamer::now_utime();
+        std::unique_ptr<slamer::Bus> bus;
+        if (cli.has("out")) {  // a log of its own: the clock starts at the config's start_utime
+          bus = std::make_unique<slamer::LogBus>("slamer-sim", cli.get("out"), config.sim.start_utime, config.process);
+        } else {
+          bus = std::make_unique<slamer::LcmBus>("slamer-sim", cli.get("lcm-url"), config.process);
+          config.sim.start_utime = bus->now();
         }
         slamer::Simulator sim(world, world_options, robot, config.sim, static_cast<uint64_t>(seed));
-        return cli.has("out") ? slamer::run_to_log(sim, config, cli.get("out"))
-                              : slamer::run_live(sim, config, cli.get("lcm-url"), speed);
+        return slamer::run(sim, config, *bus, speed);
       });
 }

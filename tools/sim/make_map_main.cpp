@@ -1,5 +1,5 @@
 // slamer-make-map: renders a floor plan into a semantic map (PGM + PNG + YAML).
-#include "common/process/lcm_process.hpp"
+#include "common/process/process_main.hpp"
 #include "tools/sim/floor_plan.hpp"
 
 int main(int argc, char** argv) {

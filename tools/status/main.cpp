@@ -4,7 +4,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "common/process/lcm_process.hpp"
+#include "common/process/lcm_bus.hpp"
+#include "common/process/process_main.hpp"
 #include "tools/status/status_table.hpp"
 
 namespace {
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
         const bool json = cli.has("json");
         const bool terminal = !once && isatty(STDOUT_FILENO) != 0;
 
-        slamer::LcmProcess process("slamer-status", cli.get("lcm-url"), config.process);
+        slamer::LcmBus process("slamer-status", cli.get("lcm-url"), config.process);
         slamer::StatusTable table(config.status.stale_after);
         process.subscribe<slamer::process_status_t>(
             config.status.channel, [&](const slamer::process_status_t& status, const slamer::ReceiveInfo& info) {

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "common/process/json.hpp"
+#include <nlohmann/json.hpp>
 #include "slamer/channel_stats_t.hpp"
 
 namespace slamer {
@@ -69,30 +69,32 @@ std::string StatusTable::render_text(int64_t now_utime) const {
 }
 
 std::string StatusTable::render_json(int64_t now_utime) const {
-  std::ostringstream out;
-  out << "{\"processes\": [";
-  bool first = true;
+  nlohmann::json processes = nlohmann::json::array();
   for (const auto& [key, entry] : entries_) {
     const process_status_t& s = entry.status;
-    out << (first ? "" : ", ") << "{\"process\": " << json_quote(s.process) << ", \"pid\": " << s.pid
-        << ", \"state\": " << json_quote(is_stale(entry, now_utime) ? "gone" : state_name(s.state))
-        << ", \"message\": " << json_quote(s.message) << ", \"uptime\": " << s.uptime
-        << ", \"messages_in\": " << s.messages_in << ", \"messages_out\": " << s.messages_out
-        << ", \"decode_errors\": " << s.decode_errors << ", \"drops\": " << s.drops
-        << ", \"processing_time_p50\": " << s.processing_time_p50
-        << ", \"processing_time_p99\": " << s.processing_time_p99 << ", \"channels\": [";
-    for (std::size_t i = 0; i < s.channels.size(); ++i) {
-      const channel_stats_t& c = s.channels[i];
-      out << (i == 0 ? "" : ", ") << "{\"channel\": " << json_quote(c.channel)
-          << ", \"direction\": " << json_quote(c.direction == channel_stats_t::SUBSCRIBED ? "in" : "out")
-          << ", \"messages\": " << c.messages << ", \"decode_errors\": " << c.decode_errors
-          << ", \"drops\": " << c.drops << "}";
+    nlohmann::json channels = nlohmann::json::array();
+    for (const channel_stats_t& c : s.channels) {
+      channels.push_back({{"channel", c.channel},
+                          {"direction", c.direction == channel_stats_t::SUBSCRIBED ? "in" : "out"},
+                          {"messages", c.messages},
+                          {"decode_errors", c.decode_errors},
+                          {"drops", c.drops}});
     }
-    out << "]}";
-    first = false;
+    processes.push_back({{"process", s.process},
+                         {"pid", s.pid},
+                         {"state", is_stale(entry, now_utime) ? "gone" : state_name(s.state)},
+                         {"message", s.message},
+                         {"uptime", s.uptime},
+                         {"messages_in", s.messages_in},
+                         {"messages_out", s.messages_out},
+                         {"decode_errors", s.decode_errors},
+                         {"drops", s.drops},
+                         {"processing_time_p50", s.processing_time_p50},
+                         {"processing_time_p99", s.processing_time_p99},
+                         {"channels", channels}});
   }
-  out << "]}\n";
-  return out.str();
+  // Names and messages come off the bus: invalid UTF-8 is replaced, not an exception.
+  return nlohmann::json{{"processes", processes}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::vector<std::string> StatusTable::check_expected(const std::vector<std::string>& names, int64_t now_utime) const {

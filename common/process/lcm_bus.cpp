@@ -1,0 +1,151 @@
+#include "common/process/lcm_bus.hpp"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/signalfd.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string_view>
+
+#include "common/process/log.hpp"
+
+namespace slamer {
+
+int64_t now_utime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+namespace {
+
+// LCM treats a channel as a regular expression; quote it so "A.B" is literal.
+std::string literal_pattern(const std::string& channel) {
+  std::string pattern;
+  for (const char c : channel) {
+    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) {
+      pattern += '\\';
+    }
+    pattern += c;
+  }
+  return pattern;
+}
+
+}  // namespace
+
+struct LcmBus::Context {
+  LcmBus* bus;
+  const std::string* channel;
+};
+
+LcmBus::LcmBus(std::string name, const std::string& lcm_url, ProcessOptions options)
+    : Bus(std::move(name), std::move(options), static_cast<int32_t>(getpid()), now_utime()) {
+  // Block the stop signals before LCM starts its threads so they inherit the
+  // mask and every SIGINT/SIGTERM is read from the signalfd in run().
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  if (pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr) != 0) {
+    throw std::runtime_error("cannot block SIGINT/SIGTERM");
+  }
+  signal_fd_ = signalfd(-1, &stop_signals, SFD_NONBLOCK | SFD_CLOEXEC);
+  if (signal_fd_ < 0) {
+    throw std::runtime_error(std::string("cannot create a signalfd: ") + std::strerror(errno));
+  }
+  lcm_ = std::make_unique<lcm::LCM>(lcm_url);
+  if (!lcm_->good()) {
+    close(signal_fd_);
+    throw std::runtime_error("cannot open LCM" + (lcm_url.empty() ? std::string() : " URL '" + lcm_url + "'") +
+                             " (for UDP multicast the host needs a multicast route, e.g. "
+                             "'ip route add 224.0.0.0/4 dev lo' on a machine without a network)");
+  }
+}
+
+LcmBus::~LcmBus() {
+  lcm_.reset();
+  if (signal_fd_ >= 0) {
+    close(signal_fd_);
+  }
+}
+
+void LcmBus::start_receiving(const std::string& channel) {
+  channels_.push_back(std::make_unique<std::string>(channel));
+  // LCM keeps the context pointer; the bus outlives its subscriptions.
+  auto* context = new Context{this, channels_.back().get()};
+  lcm_->subscribeFunction(
+      literal_pattern(channel),
+      +[](const lcm::ReceiveBuffer* buffer, const std::string&, Context* self) {
+        self->bus->deliver(*self->channel, static_cast<const uint8_t*>(buffer->data), buffer->data_size,
+                           buffer->recv_utime);
+      },
+      context);
+  contexts_.emplace_back(context);
+}
+
+bool LcmBus::send(const std::string& channel, const std::vector<uint8_t>& bytes, int64_t) {
+  return lcm_->publish(channel, bytes.data(), static_cast<unsigned int>(bytes.size())) == 0;
+}
+
+void LcmBus::watch(int fd, std::function<void()> on_readable) {
+  watched_[fd] = std::move(on_readable);
+}
+
+void LcmBus::unwatch(int fd) {
+  watched_.erase(fd);
+}
+
+int LcmBus::run() {
+  begin_run();
+  constexpr int64_t kMaxWaitUs = 100'000;
+  std::vector<pollfd> fds;
+  std::vector<int> watched_fds;
+  while (!stopping()) {
+    const int64_t wait = std::clamp<int64_t>(next_timer_due() - now(), 0, kMaxWaitUs);
+    fds.assign({{lcm_->getFileno(), POLLIN, 0}, {signal_fd_, POLLIN, 0}});
+    watched_fds.clear();
+    for (const auto& [fd, callback] : watched_) {
+      fds.push_back({fd, POLLIN, 0});
+      watched_fds.push_back(fd);
+    }
+    const int ready = poll(fds.data(), fds.size(), static_cast<int>((wait + 999) / 1000));
+    if (ready < 0 && errno != EINTR) {
+      log_line(name(), LogLevel::kError, std::string("poll failed: ") + std::strerror(errno));
+      return 1;
+    }
+    if (ready > 0 && (fds[1].revents & POLLIN) != 0) {
+      signalfd_siginfo signal_info{};
+      if (read(signal_fd_, &signal_info, sizeof(signal_info)) == static_cast<ssize_t>(sizeof(signal_info))) {
+        log_info(std::string("received ") + (signal_info.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM") + ", stopping");
+      }
+      stop();
+      break;
+    }
+    if (ready > 0 && (fds[0].revents & POLLIN) != 0 && lcm_->handleTimeout(0) < 0) {
+      log_line(name(), LogLevel::kError, "LCM receive failed");
+      return 1;
+    }
+    for (std::size_t i = 0; ready > 0 && i < watched_fds.size(); ++i) {
+      // Readable, hung up or in error: the callback reads and finds out which.
+      const auto it = watched_.find(watched_fds[i]);
+      if ((fds[i + 2].revents & (POLLIN | POLLHUP | POLLERR | POLLNVAL)) != 0 && it != watched_.end()) {
+        const std::function<void()> callback = it->second;  // it may unwatch itself
+        try {
+          callback();
+        } catch (const std::exception& e) {
+          count_error(std::string("device: ") + e.what());
+        }
+      }
+    }
+    fire_due_timers(now());
+  }
+  end_run();
+  return 0;
+}
+
+}  // namespace slamer

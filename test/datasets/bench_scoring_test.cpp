@@ -1,0 +1,66 @@
+// slamer-bench's scoring: one pose per scan, errors, the status-versus-error
+// table and the files it writes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "common/config/config_reader.hpp"
+#include "tools/datasets/bench_files.hpp"
+#include "tools/datasets/bench_scoring.hpp"
+
+namespace slamer {
+namespace {
+
+TEST(BenchScoring, OnePosePerScanAndTheConfusionTable) {
+  const std::vector<int64_t> utimes{100, 200, 300, 400};
+  const std::vector<int64_t> log_times{5'000'000, 5'000'000, 6'000'000, 7'000'000};  // the log's own clock
+  const std::vector<PoseReport> reports{{400, {3.0, 0.0, 0.0}, BenchStatus::kLost},
+                                        {200, {1.0, 0.0, 0.1}, BenchStatus::kOk}};
+  int64_t missing = 0;
+  const auto poses = poses_per_scan(utimes, log_times, reports, {0.5, 0.0, 0.0}, &missing);
+  ASSERT_EQ(poses.size(), 4u);
+  EXPECT_EQ(missing, 2);
+  EXPECT_EQ(poses[0].status, BenchStatus::kInitializing);  // before any POSE: the initial pose
+  EXPECT_DOUBLE_EQ(poses[0].pose.x, 0.5);
+  EXPECT_FALSE(poses[2].has_report);  // repeats scan 1's pose
+  EXPECT_DOUBLE_EQ(poses[2].pose.x, 1.0);
+  EXPECT_EQ(poses[2].status, BenchStatus::kOk);
+  EXPECT_DOUBLE_EQ(poses[2].t, 6.0);
+  const std::vector<Pose2> reference{{0.5, 0.0, 0.0}, {1.0, 0.1, 0.0}, {1.3, 0.0, 0.0}, {2.0, 0.0, 0.0}};
+  const BenchScore score = score_poses(poses, reference);
+  EXPECT_NEAR(score.position.mean, (0.0 + 0.1 + 0.3 + 1.0) / 4, 1e-12);
+  EXPECT_NEAR(score.position.max, 1.0, 1e-12);
+  EXPECT_NEAR(score.heading.max, 0.1, 1e-12);
+  EXPECT_DOUBLE_EQ(score.fraction_lost, 0.25);
+  EXPECT_EQ(score.confusion[0][0], 1);  // INITIALIZING, < 0.2 m
+  EXPECT_EQ(score.confusion[1][0], 1);  // OK, < 0.2 m
+  EXPECT_EQ(score.confusion[1][1], 1);  // OK, 0.2-0.5 m
+  EXPECT_EQ(score.confusion[3][2], 1);  // LOST, > 0.5 m
+  const std::string text = format_poses(poses);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 4);
+  EXPECT_EQ(text.substr(0, text.find('\n')), "5.000000 0.5000 0.0000 0.00000 INITIALIZING");
+  const auto json = nlohmann::json::parse(summary_json(score, {"x.log", "lfm", 500, "all", 1, 2.0, 1.0, "cmd", 0.4}));
+  EXPECT_DOUBLE_EQ(json["fraction_lost"].get<double>(), 0.25);
+  EXPECT_EQ(json["status_vs_error"]["LOST"]["error_above_0.5m"].get<int>(), 1);
+  EXPECT_DOUBLE_EQ(json["time_per_scan_ms"]["cpu"].get<double>(), 250.0);
+  EXPECT_NEAR(json["time_per_scan_ms"]["cpu_without_startup"].get<double>(), 200.0, 1e-9);  // 0.6 s over 3 scans
+  const std::string png = (std::filesystem::temp_directory_path() / "slamer_bench_plot.png").string();
+  write_bench_plot(poses, score, "test", png);
+  EXPECT_GT(std::filesystem::file_size(png), 1000u);
+  std::filesystem::remove(png);
+  EXPECT_THROW(score_poses(poses, {}), std::invalid_argument);
+}
+
+TEST(BenchFiles, LocalizerConfigKeepsEverythingElse) {
+  const std::string config = std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml";
+  const std::string yaml = bench_localizer_config(config, {123, 3, "/m/map.yaml", "/r/robot.yaml"});
+  EXPECT_NE(yaml.find("particles: 123"), std::string::npos);
+  EXPECT_NE(yaml.find("beam_step: 3"), std::string::npos);
+  EXPECT_NE(yaml.find("map: /m/map.yaml"), std::string::npos);
+  EXPECT_NE(yaml.find("alpha_rot_from_trans"), std::string::npos);
+  EXPECT_THROW(bench_localizer_config("/nonexistent.yaml", {}), ConfigError);
+}
+
+}  // namespace
+}  // namespace slamer
