@@ -11,6 +11,7 @@
 #include "common/config/config_reader.hpp"
 #include "common/map/semantic_map.hpp"
 #include "common/robot/robot_options.hpp"
+#include "drivers/urg/urg_options.hpp"
 #include "drivers/wheels/wheels_options.hpp"
 #include "localizer/localizer_config.hpp"
 #include "recognizer/recognizer_config.hpp"
@@ -42,6 +43,15 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
   static const std::map<std::string, std::function<void(const std::string&)>> table = {
       {"slamer-status.yaml", [](const std::string& path) { load_options<StatusProcessConfig>(path); }},
       {"sim.yaml", [](const std::string& path) { load_options<SimProcessConfig>(path); }},
+      {"urg.yaml",
+       [](const std::string& path) {
+         const auto config = load_options<urg::UrgProcessConfig>(path);
+         EXPECT_EQ(config.connection.host, "192.168.0.10");
+         EXPECT_EQ(config.connection.port, 10940);
+         EXPECT_EQ(config.session.first_step, -1);
+         EXPECT_EQ(config.session.last_step, -1);
+         EXPECT_EQ(config.session.cluster, 1);
+       }},
       {"eval.yaml", [](const std::string& path) { load_options<EvalConfig>(path); }},
       {"recognizer.yaml", [](const std::string& path) { load_options<RecognizerProcessConfig>(path); }},
       {"localizer.yaml",

@@ -1,0 +1,287 @@
+// End to end: the real slamer-urg against slamer-urg-sim on loopback (free
+// ports), scans and PROCESS_STATUS read from LCM: geometry and ranges, damaged
+// replies, the sensor refusing / dropping / going silent and coming back,
+// SCIP 1.1, a geometry change after a reboot, the serial path over a pty.
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <lcm/lcm-cpp.hpp>
+#include <numbers>
+#include <thread>
+
+#include "common/process/decode.hpp"
+#include "slamer/laser_scan_t.hpp"
+#include "slamer/process_status_t.hpp"
+#include "test/support/child_process.hpp"
+#include "tools/urg_sim/sim_sensor.hpp"
+
+namespace slamer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Bus {
+  explicit Bus(const std::string& url) : lcm(url) {
+    lcm.subscribeFunction("LIDAR", &Bus::on_scan, this);
+    lcm.subscribeFunction("PROCESS_STATUS", &Bus::on_status, this);
+  }
+  static void on_scan(const lcm::ReceiveBuffer* b, const std::string&, Bus* self) {
+    laser_scan_t scan;
+    if (decode_message(b->data, b->data_size, &scan) == DecodeStatus::kOk) {
+      self->scans.push_back(scan);
+      self->scan_times.push_back(Clock::now());
+    }
+  }
+  static void on_status(const lcm::ReceiveBuffer* b, const std::string&, Bus* self) {
+    process_status_t status;
+    if (decode_message(b->data, b->data_size, &status) == DecodeStatus::kOk && status.process == "slamer-urg") {
+      self->statuses.push_back(status);
+    }
+  }
+  bool pump_until(const std::function<bool()>& done, double timeout_s) {
+    const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
+    while (!done()) {
+      if (Clock::now() > deadline) {
+        return false;
+      }
+      lcm.handleTimeout(10);
+    }
+    return true;
+  }
+  void pump_for(double seconds) {
+    pump_until([] { return false; }, seconds);
+  }
+  lcm::LCM lcm;
+  std::vector<laser_scan_t> scans;
+  std::vector<Clock::time_point> scan_times;
+  std::vector<process_status_t> statuses;
+};
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / (name + "_" + std::to_string(getpid()))).string();
+}
+
+int free_port() {
+  const int s = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(s, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
+  socklen_t len = sizeof addr;
+  getsockname(s, reinterpret_cast<sockaddr*>(&addr), &len);
+  close(s);
+  return ntohs(addr.sin_port);
+}
+
+// Starts the emulator and waits for its port.
+std::unique_ptr<test::ChildProcess> start_sim(std::vector<std::string> args, int* port) {
+  const std::string port_file = temp_path("urg_port");
+  std::filesystem::remove(port_file);
+  args.insert(args.end(), {"--port-file", port_file});
+  if (*port > 0) {
+    args.insert(args.end(), {"--port", std::to_string(*port)});
+  }
+  auto sim = std::make_unique<test::ChildProcess>(test::binary_path("slamer-urg-sim"), args);
+  for (int i = 0; i < 200 && !std::filesystem::exists(port_file); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  *port = std::stoi(test::read_file(port_file));
+  return sim;
+}
+
+std::unique_ptr<test::ChildProcess> start_driver(const std::string& url, int port,
+                                                 std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {"--config",  std::string(SLAMER_SOURCE_DIR) + "/config/urg.yaml",
+                                   "--host",    "127.0.0.1",
+                                   "--port",    std::to_string(port),
+                                   "--lcm-url", url};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return std::make_unique<test::ChildProcess>(test::binary_path("slamer-urg"), args);
+}
+
+TEST(UrgProcess, PublishesScansWithPpGeometryAndTheSceneRanges) {
+  const std::string url = test::unique_lcm_url(1);
+  Bus bus(url);
+  int port = 0;
+  auto sim = start_sim({"--model", "URM-40LC", "--jitter-ms", "5", "--segment-max", "100"}, &port);
+  auto driver = start_driver(url, port);
+  ASSERT_TRUE(bus.pump_until([&] { return bus.scans.size() >= 60 && !bus.statuses.empty(); }, 6.0))
+      << driver->stderr_text();
+  urg::SimModel model;
+  urg::sim_model("URM-40LC", &model);
+  const urg::SimSensor truth(model, {});
+  const laser_scan_t& s = bus.scans.back();
+  ASSERT_EQ(s.nranges, 1081);
+  EXPECT_EQ(s.nintensities, 0);
+  EXPECT_NEAR(s.angle_min, -3 * std::numbers::pi / 4, 1e-9);
+  EXPECT_NEAR(s.angle_increment, 2 * std::numbers::pi / 1440, 1e-12);
+  EXPECT_FLOAT_EQ(s.range_min, 0.06f);
+  EXPECT_FLOAT_EQ(s.range_max, 30.0f);
+  EXPECT_FLOAT_EQ(s.scan_period, 0.025f);
+  for (int i = 0; i < 1081; i += 7) {
+    const float r = s.ranges[static_cast<std::size_t>(i)];
+    if (urg::SimSensor::no_echo_step(i)) {
+      EXPECT_EQ(r, INFINITY);
+    } else {
+      EXPECT_NEAR(r, std::floor(truth.range_mm(i)) / 1000.0, 1e-6) << i;
+    }
+  }
+  for (std::size_t i = 1; i < bus.scans.size(); ++i) {
+    EXPECT_EQ(bus.scans[i].seq, bus.scans[i - 1].seq + 1);  // each scan exactly once
+    EXPECT_NEAR(static_cast<double>(bus.scans[i].sensor_utime - bus.scans[i - 1].sensor_utime), 25000.0, 1000.0);
+    EXPECT_NEAR(static_cast<double>(bus.scans[i].utime - bus.scans[i - 1].utime), 25000.0, 1000.0);
+  }
+  EXPECT_EQ(s.sensor_utime % 1000, 0);
+  bus.pump_until([&] { return bus.statuses.back().state == process_status_t::OK; }, 3.0);
+  EXPECT_EQ(bus.statuses.back().state, process_status_t::OK) << bus.statuses.back().message;
+  EXPECT_NE(bus.statuses.back().message.find("URM-40LC-EW"), std::string::npos) << bus.statuses.back().message;
+}
+
+TEST(UrgProcess, DamagedRepliesAreCountedNotPublished) {
+  const std::string url = test::unique_lcm_url(2);
+  Bus bus(url);
+  int port = 0;
+  const std::string truth = temp_path("urg_truth");
+  auto sim = start_sim({"--model", "UTM-30LX", "--bad-checksum-rate", "0.05", "--truncate-rate", "0.05",
+                        "--garbage-rate", "0.02", "--segment-max", "13", "--truth", truth},
+                       &port);
+  auto driver = start_driver(url, port, {});
+  bus.pump_until([&] { return bus.scans.size() >= 100; }, 8.0);
+  ASSERT_GE(bus.scans.size(), 100u) << driver->stderr_text();
+  for (const auto& s : bus.scans) {
+    ASSERT_EQ(s.nranges, 1081);
+  }
+  bus.pump_until(
+      [&] {
+        return !bus.statuses.empty() && bus.statuses.back().message.find("checksum 0 ") == std::string::npos &&
+               bus.statuses.back().message.find("truncated 0 ") == std::string::npos;
+      },
+      4.0);
+  ASSERT_FALSE(bus.statuses.empty());
+  EXPECT_GT(bus.statuses.back().drops, 0) << bus.statuses.back().message;
+  EXPECT_EQ(bus.statuses.back().message.find("checksum 0 "), std::string::npos) << bus.statuses.back().message;
+  EXPECT_EQ(bus.statuses.back().message.find("truncated 0 "), std::string::npos) << bus.statuses.back().message;
+  // At least 90 % of the intact scans are published.
+  const std::string text = test::read_file(truth);
+  const auto sent = std::count(text.begin(), text.end(), '\n') - 1;
+  EXPECT_GE(static_cast<double>(bus.scans.size()), 0.9 * 0.88 * static_cast<double>(sent) - 45) << sent;
+}
+
+// Scans arrive again within 2 s of the sensor accepting connections.
+void expect_recovers(Bus& bus, double sensor_back_s, const char* what) {
+  const std::size_t before = bus.scans.size();
+  const auto back = Clock::now() + std::chrono::duration<double>(sensor_back_s);
+  bus.pump_until([&] { return bus.scans.size() > before + 5 && Clock::now() > back; }, sensor_back_s + 4.0);
+  ASSERT_GT(bus.scans.size(), before + 5) << what;
+  auto first_new = bus.scan_times.begin() + static_cast<std::ptrdiff_t>(before);
+  const double after_back = std::chrono::duration<double>(*first_new - back).count();
+  EXPECT_LT(after_back, 2.0) << what;
+}
+
+TEST(UrgProcess, SensorRefusingThenAppearing) {
+  const std::string url = test::unique_lcm_url(3);
+  Bus bus(url);
+  int port = free_port();
+  auto driver = start_driver(url, port);
+  bus.pump_until([&] { return bus.statuses.size() >= 2; }, 4.0);
+  ASSERT_FALSE(bus.statuses.empty());
+  EXPECT_EQ(bus.statuses.back().state, process_status_t::DEGRADED);
+  EXPECT_NE(bus.statuses.back().message.find("refused"), std::string::npos) << bus.statuses.back().message;
+  auto sim = start_sim({"--model", "UTM-30LX"}, &port);
+  expect_recovers(bus, 0.0, "refused");
+  EXPECT_TRUE(driver->running());
+}
+
+TEST(UrgProcess, SensorResetAndDownThenBack) {
+  const std::string url = test::unique_lcm_url(4);
+  Bus bus(url);
+  int port = 0;
+  auto sim = start_sim({"--model", "UST-10LX", "--drop-after", "1.5", "--down", "1.5"}, &port);
+  auto driver = start_driver(url, port);
+  ASSERT_TRUE(bus.pump_until([&] { return !bus.scans.empty(); }, 4.0)) << driver->stderr_text();
+  const auto start = bus.scan_times.front();
+  bus.pump_until([&] { return Clock::now() > start + std::chrono::milliseconds(1700); }, 4.0);
+  const std::size_t statuses = bus.statuses.size();
+  bus.pump_until([&] { return bus.statuses.size() > statuses; }, 2.0);
+  EXPECT_EQ(bus.statuses.back().state, process_status_t::DEGRADED) << bus.statuses.back().message;
+  const double back_in =
+      1.5 - std::chrono::duration<double>(Clock::now() - start - std::chrono::milliseconds(1500)).count();
+  expect_recovers(bus, std::max(back_in, 0.0), "reset");
+}
+
+TEST(UrgProcess, SilentConnectionIsDroppedAndScansResume) {
+  const std::string url = test::unique_lcm_url(5);
+  Bus bus(url);
+  int port = 0;
+  auto sim = start_sim({"--model", "URM-40LC", "--silent-after", "1.0"}, &port);
+  auto driver = start_driver(url, port);
+  ASSERT_TRUE(bus.pump_until([&] { return bus.scans.size() > 10; }, 4.0)) << driver->stderr_text();
+  bus.pump_for(1.5);
+  // A gap of more than 3 periods happened, then scans again from the new connection.
+  bool gap = false;
+  for (std::size_t i = 1; i < bus.scan_times.size(); ++i) {
+    gap = gap || bus.scan_times[i] - bus.scan_times[i - 1] > std::chrono::milliseconds(75);
+  }
+  EXPECT_TRUE(gap);
+  const auto last = bus.scan_times.back();
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - last).count(), 0.5);
+}
+
+TEST(UrgProcess, Scip11SensorIsSwitchedTo20) {
+  const std::string url = test::unique_lcm_url(6);
+  Bus bus(url);
+  int port = 0;
+  auto sim = start_sim({"--model", "URG-04LX"}, &port);
+  auto driver = start_driver(url, port);
+  ASSERT_TRUE(bus.pump_until([&] { return bus.scans.size() >= 5; }, 5.0)) << driver->stderr_text();
+  EXPECT_EQ(bus.scans.back().nranges, 682);  // AMIN 44 .. AMAX 725
+  EXPECT_NEAR(bus.scans.back().angle_min, (44 - 384) * 2 * std::numbers::pi / 1024, 1e-9);
+  EXPECT_FLOAT_EQ(bus.scans.back().range_max, 5.6f);
+}
+
+TEST(UrgProcess, GeometryChangeAfterRebootUsesTheNewPp) {
+  const std::string url = test::unique_lcm_url(7);
+  Bus bus(url);
+  int port = 0;
+  auto sim = start_sim(
+      {"--model", "URG-04LX", "--error-after", "15", "--error-survives-reset", "--model-after-reboot", "UTM-30LX"},
+      &port);
+  auto driver = start_driver(url, port);
+  ASSERT_TRUE(bus.pump_until([&] { return !bus.scans.empty() && bus.scans.back().nranges == 1081; }, 10.0))
+      << driver->stderr_text();
+  EXPECT_EQ(bus.scans.front().nranges, 682);
+  bus.pump_until(
+      [&] {
+        return !bus.statuses.empty() && bus.statuses.back().message.find("reboots 1") != std::string::npos &&
+               bus.statuses.back().message.find("streaming UTM-30LX") != std::string::npos;
+      },
+      3.0);
+  EXPECT_NE(bus.statuses.back().message.find("reboots 1"), std::string::npos) << bus.statuses.back().message;
+  EXPECT_NE(bus.statuses.back().message.find("UTM-30LX"), std::string::npos) << bus.statuses.back().message;
+}
+
+TEST(UrgProcess, SerialPathOverAPty) {
+  const std::string url = test::unique_lcm_url(8);
+  Bus bus(url);
+  const std::string link = temp_path("urg_pty");
+  std::filesystem::remove(link);
+  test::ChildProcess sim(test::binary_path("slamer-urg-sim"), {"--model", "URG-04LX", "--pty", "--pty-link", link});
+  for (int i = 0; i < 200 && !std::filesystem::is_symlink(link); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  auto driver = start_driver(url, 1, {"--device", link});
+  ASSERT_TRUE(bus.pump_until([&] { return bus.scans.size() >= 5; }, 6.0)) << driver->stderr_text();
+  EXPECT_EQ(bus.scans.back().nranges, 682);
+  std::filesystem::remove(link);
+}
+
+}  // namespace
+}  // namespace slamer
