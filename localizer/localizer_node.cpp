@@ -126,7 +126,7 @@ bool LocalizerNode::objects_missing(int64_t scan_utime) const {
     return false;
   }
   const std::optional<int64_t>& since = last_objects_utime_ ? last_objects_utime_ : first_scan_utime_;
-  return since && scan_utime - *since > microseconds(options_.objects_timeout);
+  return since && scan_utime - *since > microseconds(options_.inputs.objects_timeout);
 }
 
 std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
@@ -136,7 +136,7 @@ std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
   const Pending& oldest = pending_.front();
   const bool release =
       !needs_objects() || oldest.objects || now_utime == std::numeric_limits<int64_t>::max() ||
-      now_utime - oldest.arrival_utime >= microseconds(options_.objects_wait) || pending_.size() > kMaxWaiting ||
+      now_utime - oldest.arrival_utime >= microseconds(options_.inputs.objects_wait) || pending_.size() > kMaxWaiting ||
       objects_missing(pending_.back().scan.utime) ||
       // The recognizer works in order: a later scan's objects mean these will not come.
       std::any_of(pending_.begin() + 1, pending_.end(), [](const Pending& p) { return p.objects.has_value(); });
@@ -149,7 +149,7 @@ std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
 }
 
 bool LocalizerNode::scans_missing(int64_t now_utime, int64_t since_utime) const {
-  return now_utime - last_scan_arrival_.value_or(since_utime) > microseconds(options_.scan_timeout);
+  return now_utime - last_scan_arrival_.value_or(since_utime) > microseconds(options_.inputs.scan_timeout);
 }
 
 std::optional<Pose2> LocalizerNode::odometry_at(int64_t utime) const {
@@ -173,7 +173,7 @@ UpdateResult LocalizerNode::process(const Pending& pending) {
   const int64_t utime = pending.scan.utime;
   constexpr double kNever = std::numeric_limits<double>::infinity();
   health_.odometry_age = odometry_.empty() ? kNever : std::max(0.0, seconds(utime - odometry_.back().first));
-  health_.odometry_missing = health_.odometry_age > options_.odometry_timeout;
+  health_.odometry_missing = health_.odometry_age > options_.inputs.odometry_timeout;
   health_.objects_age = last_objects_utime_ ? std::max(0.0, seconds(utime - *last_objects_utime_)) : kNever;
   health_.objects_missing = objects_missing(utime);
   if (needs_objects() && !pending.objects) {

@@ -21,33 +21,40 @@ LocalizerMode parse_mode(const std::string& text) {
   throw std::invalid_argument("mode must be lfm, slfm or slamer, got '" + text + "'");
 }
 
-void read_options(const ConfigReader& reader, LocalizerOptions* o) {
-  std::string mode = o->mode == LocalizerMode::kLfm ? "lfm" : o->mode == LocalizerMode::kSlfm ? "slfm" : "slamer";
-  reader.read_choice("mode", &mode, {"lfm", "slfm", "slamer"});
-  o->mode = parse_mode(mode);
-  reader.read("particles", &o->particles, in_range(1, 1'000'000));
-  int64_t seed = static_cast<int64_t>(o->seed);
-  reader.read("seed", &seed, non_negative());
-  o->seed = static_cast<uint64_t>(seed);
+void read_options(const ConfigReader& reader, MotionOptions* o) {
   reader.read("alpha_rot_from_rot", &o->alpha_rot_from_rot, non_negative());
   reader.read("alpha_rot_from_trans", &o->alpha_rot_from_trans, non_negative());
   reader.read("alpha_trans_from_trans", &o->alpha_trans_from_trans, non_negative());
   reader.read("alpha_trans_from_rot", &o->alpha_trans_from_rot, non_negative());
-  const ConfigReader lfm = reader.section("lfm");
-  lfm.read("sigma_hit", &o->lfm.sigma_hit, positive());
-  lfm.read("z_hit", &o->lfm.z_hit, probability());
-  lfm.read("z_max", &o->lfm.z_max, probability());
-  lfm.read("z_rand", &o->lfm.z_rand, probability());
-  lfm.read("range_max", &o->lfm.range_max, positive());
-  if (std::abs(o->lfm.z_hit + o->lfm.z_max + o->lfm.z_rand - 1.0) > 1e-6) {
-    lfm.fail("z_rand", "z_hit + z_max + z_rand must be 1");
+  reader.read("noise_gain_max", &o->noise_gain_max, in_range(1.0, 100.0));
+  reader.read("noise_floor_trans", &o->noise_floor_trans, in_range(0.0, 1.0));
+  reader.read("noise_floor_rot", &o->noise_floor_rot, in_range(0.0, 1.0));
+  reader.read("odometry_correction_memory", &o->odometry_correction_memory, in_range(0.0, 1000.0));
+  reader.read("no_odometry_speed", &o->no_odometry_speed, in_range(0.0, 10.0));
+  reader.read("no_odometry_turn_rate", &o->no_odometry_turn_rate, in_range(0.0, 10.0));
+}
+
+void read_options(const ConfigReader& reader, LfmOptions* o) {
+  reader.read("sigma_hit", &o->sigma_hit, positive());
+  reader.read("z_hit", &o->z_hit, probability());
+  reader.read("z_max", &o->z_max, probability());
+  reader.read("z_rand", &o->z_rand, probability());
+  reader.read("range_max", &o->range_max, positive());
+  if (std::abs(o->z_hit + o->z_max + o->z_rand - 1.0) > 1e-6) {
+    reader.fail("z_rand", "z_hit + z_max + z_rand must be 1");
   }
-  if (!(o->lfm.z_rand > 0.0)) {
-    lfm.fail("z_rand", "must be > 0: a beam off the map would have probability 0");
+  if (!(o->z_rand > 0.0)) {
+    reader.fail("z_rand", "must be > 0: a beam off the map would have probability 0");
   }
   reader.read("beam_step", &o->beam_step, in_range(1, 10000));
   reader.read("beam_weight", &o->beam_weight, in_range(1e-6, 1.0));
-  reader.read("slfm_support", &o->slfm_support, positive());
+}
+
+void read_options(const ConfigReader& reader, SlfmOptions* o) {
+  reader.read("support", &o->support, positive());
+}
+
+void read_options(const ConfigReader& reader, SlamerOptions* o) {
   reader.read("dirichlet_a1", &o->dirichlet_a1, positive());
   reader.read("dirichlet_a2", &o->dirichlet_a2, positive());
   reader.read("prior_sigma", &o->prior_sigma, positive());
@@ -63,9 +70,9 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
       o->class_map[name] = map_class;
     }
   }
-  reader.read("resample_threshold", &o->resample_threshold, probability());
-  o->initial_pose = read_pose(reader, "initial_pose", o->initial_pose);
-  reader.read("initial_sigma", &o->initial_sigma, non_negative(), 3);
+}
+
+void read_options(const ConfigReader& reader, StatusOptions* o) {
   reader.read("uncertain_position_sigma", &o->uncertain_position_sigma, positive());
   reader.read("uncertain_ess_fraction", &o->uncertain_ess_fraction, probability());
   reader.read("lost_mean_log_likelihood", &o->lost_mean_log_likelihood);
@@ -77,18 +84,38 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   if (!(o->fit_lost <= o->fit_uncertain && o->fit_uncertain < o->fit_expected)) {
     reader.fail("fit_uncertain", "needs fit_lost <= fit_uncertain < fit_expected");
   }
-  reader.read("noise_gain_max", &o->noise_gain_max, in_range(1.0, 100.0));
-  reader.read("noise_floor_trans", &o->noise_floor_trans, in_range(0.0, 1.0));
-  reader.read("noise_floor_rot", &o->noise_floor_rot, in_range(0.0, 1.0));
-  reader.read("odometry_correction_memory", &o->odometry_correction_memory, in_range(0.0, 1000.0));
-  reader.read("recovery_candidates", &o->recovery_candidates, in_range(0, 1'000'000));
-  reader.read("recovery_fraction", &o->recovery_fraction, probability());
+}
+
+void read_options(const ConfigReader& reader, RecoveryOptions* o) {
+  reader.read("candidates", &o->candidates, in_range(0, 1'000'000));
+  reader.read("fraction", &o->fraction, probability());
+}
+
+void read_options(const ConfigReader& reader, InputOptions* o) {
   reader.read("scan_timeout", &o->scan_timeout, in_range(0.01, 60.0));
   reader.read("objects_wait", &o->objects_wait, in_range(0.0, 10.0));
   reader.read("objects_timeout", &o->objects_timeout, in_range(0.01, 60.0));
   reader.read("odometry_timeout", &o->odometry_timeout, in_range(0.01, 60.0));
-  reader.read("no_odometry_speed", &o->no_odometry_speed, in_range(0.0, 10.0));
-  reader.read("no_odometry_turn_rate", &o->no_odometry_turn_rate, in_range(0.0, 10.0));
+}
+
+void read_options(const ConfigReader& reader, LocalizerOptions* o) {
+  std::string mode = o->mode == LocalizerMode::kLfm ? "lfm" : o->mode == LocalizerMode::kSlfm ? "slfm" : "slamer";
+  reader.read_choice("mode", &mode, {"lfm", "slfm", "slamer"});
+  o->mode = parse_mode(mode);
+  reader.read("particles", &o->particles, in_range(1, 1'000'000));
+  int64_t seed = static_cast<int64_t>(o->seed);
+  reader.read("seed", &seed, non_negative());
+  o->seed = static_cast<uint64_t>(seed);
+  reader.read("resample_threshold", &o->resample_threshold, probability());
+  o->initial_pose = read_pose(reader, "initial_pose", o->initial_pose);
+  reader.read("initial_sigma", &o->initial_sigma, non_negative(), 3);
+  read_options(reader.section("motion"), &o->motion);
+  read_options(reader.section("lfm"), &o->lfm);
+  read_options(reader.section("slfm"), &o->slfm);
+  read_options(reader.section("slamer"), &o->slamer);
+  read_options(reader.section("status"), &o->status);
+  read_options(reader.section("recovery"), &o->recovery);
+  read_options(reader.section("inputs"), &o->inputs);
 }
 
 }  // namespace slamer

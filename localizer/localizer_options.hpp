@@ -16,27 +16,43 @@ class ConfigReader;  // common/config/config_reader.hpp: the YAML reader stays o
 
 enum class LocalizerMode { kLfm, kSlfm, kSlamer };
 
-struct LocalizerOptions {
-  LocalizerMode mode = LocalizerMode::kSlamer;
-  int particles = 500;
-  uint64_t seed = 1;
-  // Motion noise (Eq. (5)): standard deviations of the odometry increment's
-  // rotations and translation grow with the increment (Probabilistic Robotics 5.4).
-  double alpha_rot_from_rot = 0.05;      // alpha1 [rad/rad]
-  double alpha_rot_from_trans = 0.02;    // alpha2 [rad/m]
-  double alpha_trans_from_trans = 0.05;  // alpha3 [m/m]
-  double alpha_trans_from_rot = 0.02;    // alpha4 [m/rad]
-  // Measurement model (LFM, Eqs. (10)-(13)).
-  LikelihoodFieldOptions lfm;
+// Motion model (Eq. (5)): standard deviations of the odometry increment's
+// rotations and translation grow with the increment (Probabilistic Robotics
+// 5.4); adapted to how well the scans fit (issue 9); without odometry the
+// particles diffuse.
+struct MotionOptions {
+  double alpha_rot_from_rot = 0.05;          // alpha1 [rad/rad]
+  double alpha_rot_from_trans = 0.02;        // alpha2 [rad/m]
+  double alpha_trans_from_trans = 0.05;      // alpha3 [m/m]
+  double alpha_trans_from_rot = 0.02;        // alpha4 [m/rad]
+  double noise_gain_max = 4.0;               // noise x up to this as the last scan's fit falls to status.fit_lost
+  double noise_floor_trans = 0.003;          // [m] per update x (gain - 1): spreads even a zero increment
+  double noise_floor_rot = 0.003;            // [rad] per update x (gain - 1)
+  double odometry_correction_memory = 10.0;  // [m] learn the odometry's heading error over this (0: off)
+  double no_odometry_speed = 0.5;            // [m/s] without odometry the particles diffuse this fast
+  double no_odometry_turn_rate = 0.5;        // [rad/s]
+  bool operator==(const MotionOptions&) const = default;
+};
+
+// Measurement model (LFM, Eqs. (10)-(13)), used by every mode for the beams.
+struct LfmOptions : LikelihoodFieldOptions {
   int beam_step = 1;          // use every n-th beam (1: all of them)
   double beam_weight = 0.05;  // exponent on each beam's likelihood: beams are not independent
-  // SLFM (Eqs. (16)-(17)): each beam is weighed in the likelihood field of
-  // the class of the object it hits. Eq. (17)'s exponential term for beams of
-  // unknown class, lambda exp(-lambda r) / (1 - exp(-lambda r_max)), is the
-  // same for every pose, so it cancels when the weights are normalized: such
-  // beams are left out and lambda is no option.
-  double slfm_support = 0.1;  // [m] a beam belongs to an object this close to it
-  // SLAMER (Eqs. (7)-(9)).
+  bool operator==(const LfmOptions&) const = default;
+};
+
+// SLFM (Eqs. (16)-(17)): each beam is weighed in the likelihood field of the
+// class of the object it hits. Eq. (17)'s exponential term for beams of
+// unknown class, lambda exp(-lambda r) / (1 - exp(-lambda r_max)), is the same
+// for every pose, so it cancels when the weights are normalized: such beams
+// are left out and lambda is no option.
+struct SlfmOptions {
+  double support = 0.1;  // [m] a beam belongs to an object this close to it
+  bool operator==(const SlfmOptions&) const = default;
+};
+
+// SLAMER (Eqs. (7)-(9)).
+struct SlamerOptions {
   double dirichlet_a1 = 4.0;      // concentration of the true class
   double dirichlet_a2 = 1.0;      // of the others (a1 != a2, or the recognition model says nothing)
   double prior_sigma = 0.15;      // [m] sigma_d of the map prior
@@ -52,34 +68,54 @@ struct LocalizerOptions {
                                                {"no_entry_line", "no_entry_line"},
                                                {"free_space", ""},
                                                {"others", "others"}};
-  // Resampling (Sec. IV-F) and status.
-  double resample_threshold = 0.5;  // resample when ESS < this * particles
-  Pose2 initial_pose;
-  std::vector<double> initial_sigma{0.2, 0.2, 0.1};  // [m, m, rad]
-  double uncertain_position_sigma = 0.5;             // [m]
+  bool operator==(const SlamerOptions&) const = default;
+};
+
+// POSE.status. The evidence is the scan fit: the fraction of beams ending
+// within fit_distance of an obstacle of the map at the estimate
+// (scan_fit.hpp), smoothed over about 10 scans.
+struct StatusOptions {
+  double uncertain_position_sigma = 0.5;   // [m] particles spread wider: UNCERTAIN
   double uncertain_ess_fraction = 0.05;    // ESS below this * particles: a few particles carry it all, UNCERTAIN
   double lost_mean_log_likelihood = -3.0;  // per used beam; below for `lost_after` scans: LOST
   int lost_after = 20;
-  // Robustness on real odometry (issue 9). The evidence is the scan fit: the
-  // fraction of beams ending within fit_distance of an obstacle of the map at
-  // the estimate (scan_fit.hpp), smoothed over about 10 scans for the status.
-  double fit_distance = 0.1;         // [m]
-  double fit_expected = 0.9;         // typical fit at a correct pose: motion noise as configured at or above it
-  double fit_uncertain = 0.5;        // smoothed fit below this: UNCERTAIN
-  double fit_lost = 0.3;             // below this for lost_after scans: LOST (until above fit_uncertain) and recovery
-  double noise_gain_max = 4.0;       // motion noise x up to this as the last scan's fit falls to fit_lost
-  double noise_floor_trans = 0.003;  // [m] per update x (gain - 1): spreads even a zero increment
-  double noise_floor_rot = 0.003;    // [rad] per update x (gain - 1)
-  double odometry_correction_memory = 10.0;  // [m] learn the odometry's heading error over this (0: off)
-  int recovery_candidates = 2000;            // while LOST or globally localizing: poses scored against each scan
-  double recovery_fraction = 0.1;            // of the particles replaced by the best of them each scan
-  // Input streams (LocalizerNode).
-  double scan_timeout = 2.0;           // [s] no scan for this long: no pose, PROCESS_STATUS says so
-  double objects_wait = 0.1;           // [s] how long a scan waits for its LINE_OBJECTS
-  double objects_timeout = 1.0;        // [s] none for this long: the recognizer is missing, scans stop waiting
-  double odometry_timeout = 0.5;       // [s] no odometry this close before a scan: odometry is missing
-  double no_odometry_speed = 0.5;      // [m/s] without odometry the particles diffuse this fast
-  double no_odometry_turn_rate = 0.5;  // [rad/s]
+  double fit_distance = 0.1;   // [m]
+  double fit_expected = 0.9;   // typical fit at a correct pose: motion noise as configured at or above it
+  double fit_uncertain = 0.5;  // smoothed fit below this: UNCERTAIN
+  double fit_lost = 0.3;       // below this for lost_after scans: LOST (until above fit_uncertain) and recovery
+  bool operator==(const StatusOptions&) const = default;
+};
+
+// Relocalization while LOST or globally localizing.
+struct RecoveryOptions {
+  int candidates = 2000;  // poses scored against each scan
+  double fraction = 0.1;  // of the particles replaced by the best of them each scan
+  bool operator==(const RecoveryOptions&) const = default;
+};
+
+// Input streams (LocalizerNode).
+struct InputOptions {
+  double scan_timeout = 2.0;      // [s] no scan for this long: no pose, PROCESS_STATUS says so
+  double objects_wait = 0.1;      // [s] how long a scan waits for its LINE_OBJECTS
+  double objects_timeout = 1.0;   // [s] none for this long: the recognizer is missing, scans stop waiting
+  double odometry_timeout = 0.5;  // [s] no odometry this close before a scan: odometry is missing
+  bool operator==(const InputOptions&) const = default;
+};
+
+struct LocalizerOptions {
+  LocalizerMode mode = LocalizerMode::kSlamer;
+  int particles = 500;
+  uint64_t seed = 1;
+  double resample_threshold = 0.5;  // resample when ESS < this * particles (Sec. IV-F)
+  Pose2 initial_pose;
+  std::vector<double> initial_sigma{0.2, 0.2, 0.05};  // [m, m, rad]
+  MotionOptions motion;
+  LfmOptions lfm;
+  SlfmOptions slfm;
+  SlamerOptions slamer;
+  StatusOptions status;
+  RecoveryOptions recovery;
+  InputOptions inputs;
 };
 void read_options(const ConfigReader& reader, LocalizerOptions* options);
 LocalizerMode parse_mode(const std::string& text);  // throws std::invalid_argument

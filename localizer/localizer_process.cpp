@@ -83,7 +83,7 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
     if (node_.scans_missing(bus_.now(), start)) {
       char text[96];
       std::snprintf(text, sizeof text, "no scans on %s for %.1f s: no pose", config_.channels.lidar.c_str(),
-                    config_.localizer.scan_timeout);
+                    config_.localizer.inputs.scan_timeout);
       bus_.set_state(process_status_t::DEGRADED, text);
     }
   });

@@ -18,7 +18,7 @@ OdometryIncrement decompose(const Pose2& from, const Pose2& to) {
   return {rot1, trans, angle_diff(angle_diff(to.theta, from.theta), rot1)};
 }
 
-Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const LocalizerOptions& o, std::mt19937& rng,
+Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const MotionOptions& o, std::mt19937& rng,
                     double gain) {
   const double trans = std::abs(u.trans);
   // The floor enters only as the gain rises above 1 (the scan fit fell): a

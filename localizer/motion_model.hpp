@@ -24,7 +24,7 @@ OdometryIncrement decompose(const Pose2& from, const Pose2& to);
 // deviations are multiplied by `gain` (>= 1: adaptive noise), and (gain - 1)
 // x noise_floor_trans / _rot is added, so that a zero increment still
 // spreads the particles when the scans say the pose is off.
-Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const LocalizerOptions& options, std::mt19937& rng,
+Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const MotionOptions& options, std::mt19937& rng,
                     double gain = 1.0);
 
 }  // namespace slamer

@@ -37,7 +37,7 @@ constexpr int kProposalBeams = 48;     // beams a global proposal is scored with
 // How far the map's distance fields must reach: the LFM's likelihood field
 // and SLAMER's prior, which treats everything beyond 3 sigma_d as equally far.
 double field_reach(const LocalizerOptions& options) {
-  return std::max(likelihood_field_reach(options.lfm), 3.0 * options.prior_sigma);
+  return std::max(likelihood_field_reach(options.lfm), 3.0 * options.slamer.prior_sigma);
 }
 
 }  // namespace
@@ -51,7 +51,7 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
       free_distance_(std::make_shared<const DistanceField>(free_space_distance_field(map, field_reach(options)))),
       proposals_(std::make_shared<const GlobalProposals>(free_distance_, obstacles_, kClearance)),
       rng_(static_cast<std::mt19937::result_type>(options.seed)),
-      correction_(options.odometry_correction_memory) {
+      correction_(options.motion.odometry_correction_memory) {
   if (options.particles < 1) {
     throw std::invalid_argument("the filter needs at least one particle");
   }
@@ -84,7 +84,7 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   }
   low_likelihood_scans_ = 0;
   updated_ = false;
-  fit_smoothed_ = options_.fit_expected;
+  fit_smoothed_ = options_.status.fit_expected;
   fresh_ = true;
   low_fit_scans_ = 0;
   lost_ = false;
@@ -104,7 +104,7 @@ void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
   }
   const OdometryIncrement u = correction_.correct(raw);
   for (Particle& p : particles_) {
-    p.pose = sample_motion(p.pose, u, options_, rng_, noise_gain_);
+    p.pose = sample_motion(p.pose, u, options_.motion, rng_, noise_gain_);
   }
 }
 
@@ -115,8 +115,8 @@ void ParticleFilter::diffuse(double seconds) {
   std::normal_distribution<double> standard(0.0, 1.0);
   last_heading_.reset();  // no odometry to compare the estimate's turn with
   increment_.reset();
-  const double position = options_.no_odometry_speed * seconds;
-  const double heading = options_.no_odometry_turn_rate * seconds;
+  const double position = options_.motion.no_odometry_speed * seconds;
+  const double heading = options_.motion.no_odometry_turn_rate * seconds;
   for (Particle& p : particles_) {
     p.pose = {p.pose.x + position * standard(rng_), p.pose.y + position * standard(rng_),
               wrap_angle(p.pose.theta + heading * standard(rng_))};
@@ -127,7 +127,7 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
   PreparedScan prepared;
   const double to_cells = 1.0 / geometry_.resolution;
   const float range_min = std::isfinite(scan.range_min) ? scan.range_min : 0.0f;
-  for (std::size_t i = 0; i < scan.ranges.size(); i += static_cast<std::size_t>(options_.beam_step)) {
+  for (std::size_t i = 0; i < scan.ranges.size(); i += static_cast<std::size_t>(options_.lfm.beam_step)) {
     const float r = scan.ranges[i];
     // Valid returns only: max-range beams score the same for every particle,
     // and NaN / too-close beams say nothing about the pose.
@@ -141,7 +141,7 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
     if (options_.mode == LocalizerMode::kSlfm && objects != nullptr) {
       // The class of the physical object the beam's point lies on, if any.
       const Eigen::Vector2d p(r * std::cos(a), r * std::sin(a));
-      double best = options_.slfm_support;
+      double best = options_.slfm.support;
       for (const LineObject& o : objects->objects) {
         if (o.kind != LineKind::kPhysical) {
           continue;
@@ -151,8 +151,8 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
         if (d <= best && label >= 0 && static_cast<std::size_t>(label) < objects->class_names.size()) {
           best = d;
           field = -1;
-          const auto mapped = options_.class_map.find(objects->class_names[static_cast<std::size_t>(label)]);
-          if (mapped != options_.class_map.end()) {
+          const auto mapped = options_.slamer.class_map.find(objects->class_names[static_cast<std::size_t>(label)]);
+          if (mapped != options_.slamer.class_map.end()) {
             const auto it = std::find(map_classes_.begin(), map_classes_.end(), mapped->second);
             field = it == map_classes_.end() ? -1 : static_cast<int>(it - map_classes_.begin());
           }
@@ -175,17 +175,17 @@ ParticleFilter::PreparedObjects ParticleFilter::prepare_objects(const LineObject
     }
     PreparedObjects::Object o;
     o.object = object;
-    const int n = options_.object_samples;
+    const int n = options_.slamer.object_samples;
     for (int s = 0; s < n; ++s) {
       const double t = n == 1 ? 0.5 : static_cast<double>(s) / (n - 1);
       o.samples.push_back(object.start + t * (object.end - object.start));
     }
     for (std::size_t l = 0; l < set.class_names.size(); ++l) {
-      o.log_recognition.push_back(log_dirichlet(object.probs, static_cast<int>(l), options_.dirichlet_a1,
-                                                options_.dirichlet_a2, options_.min_probability));
+      o.log_recognition.push_back(log_dirichlet(object.probs, static_cast<int>(l), options_.slamer.dirichlet_a1,
+                                                options_.slamer.dirichlet_a2, options_.slamer.min_probability));
       int field = kNoField;
-      const auto mapped = options_.class_map.find(set.class_names[l]);
-      if (mapped != options_.class_map.end()) {
+      const auto mapped = options_.slamer.class_map.find(set.class_names[l]);
+      if (mapped != options_.slamer.class_map.end()) {
         if (mapped->second.empty()) {
           field = kFreeSpace;
         } else {
@@ -229,7 +229,7 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
       sum += field->off_map_log_likelihood();
     }
   }
-  return options_.beam_weight * sum;
+  return options_.lfm.beam_weight * sum;
 }
 
 double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
@@ -241,7 +241,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   const double to_cells = 1.0 / geometry_.resolution;
   // An object off the map, or a class with no cells, is this far from it: the
   // same for every pose, so it neither helps nor hurts.
-  const double far = 3.0 * options_.prior_sigma;
+  const double far = 3.0 * options_.slamer.prior_sigma;
   double total = 0.0;
   std::vector<double> terms;
   std::vector<Cell> cells;  // sample cells on the map; off-map samples are left out
@@ -269,9 +269,9 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
         }
         d = sum / static_cast<double>(o.samples.size());
       }
-      terms[l] = o.log_recognition[l] + log_normal_density(d, options_.prior_sigma);
+      terms[l] = o.log_recognition[l] + log_normal_density(d, options_.slamer.prior_sigma);
     }
-    total += options_.object_weight * log_sum_exp(terms);
+    total += options_.slamer.object_weight * log_sum_exp(terms);
     if (class_terms != nullptr) {
       class_terms->push_back(terms);
     }
@@ -327,7 +327,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   }
   const std::size_t used_beams = beams.points.x.size();
   result.mean_log_likelihood =
-      used_beams > 0 ? mean_beam / (options_.beam_weight * static_cast<double>(used_beams)) : 0.0;
+      used_beams > 0 ? mean_beam / (options_.lfm.beam_weight * static_cast<double>(used_beams)) : 0.0;
 
   // (D) the objects' class posteriors at the most likely particle's pose.
   const auto best =
@@ -351,14 +351,14 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   }
 
   updated_ = true;
-  if (used_beams > 0 && result.mean_log_likelihood < options_.lost_mean_log_likelihood) {
+  if (used_beams > 0 && result.mean_log_likelihood < options_.status.lost_mean_log_likelihood) {
     ++low_likelihood_scans_;
   } else {
     low_likelihood_scans_ = 0;
   }
   result.estimate = estimate();
   result.fit = scan_fit(*obstacles_, beams.points, sensor_in_cells(geometry_, result.estimate.pose, mount_),
-                        options_.fit_distance);
+                        options_.status.fit_distance);
   if (used_beams > 0) {
     update_fit(result.fit, result.estimate);
   }
@@ -366,7 +366,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   result.noise_gain = noise_gain_;
   // Learn the odometry's heading error only from scans the filter is sure of.
   if (increment_ && last_heading_ && result.injected == 0 && result.estimate.status == LocalizerStatus::kOk &&
-      result.fit >= options_.fit_uncertain) {
+      result.fit >= options_.status.fit_uncertain) {
     correction_.observe(*increment_, angle_diff(result.estimate.pose.theta, *last_heading_));
   }
   increment_.reset();

@@ -24,22 +24,22 @@ void ParticleFilter::initialize_global() {
   }
   global_ = true;
   fit_smoothed_ = 0.0;
-  noise_gain_ = options_.noise_gain_max;
+  noise_gain_ = options_.motion.noise_gain_max;
 }
 
 LocalizerStatus ParticleFilter::status(const PoseEstimate& e) const {
   if (!updated_) {
     return LocalizerStatus::kInitializing;
   }
-  if ((lost_ && !global_) || low_likelihood_scans_ >= options_.lost_after) {
+  if ((lost_ && !global_) || low_likelihood_scans_ >= options_.status.lost_after) {
     return LocalizerStatus::kLost;
   }
   // The scan does not fit the map where the estimate puts it; or spread
   // particles, or a posterior resting on a handful of them (e.g. right after a
   // wide initialization: tight but not yet to be trusted).
-  if (global_ || fit_smoothed_ < options_.fit_uncertain ||
-      std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.uncertain_position_sigma ||
-      e.ess < options_.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
+  if (global_ || fit_smoothed_ < options_.status.fit_uncertain ||
+      std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.status.uncertain_position_sigma ||
+      e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
     return LocalizerStatus::kUncertain;
   }
   return LocalizerStatus::kOk;
@@ -50,29 +50,31 @@ void ParticleFilter::update_fit(double fit, const PoseEstimate& e) {
   // hand is no evidence that the scans fit there.
   fit_smoothed_ = fresh_ ? fit : fit_smoothed_ + kFitSmoothing * (fit - fit_smoothed_);
   fresh_ = false;
-  low_fit_scans_ = fit_smoothed_ < options_.fit_lost ? low_fit_scans_ + 1 : 0;
-  if (low_fit_scans_ >= options_.lost_after) {
+  low_fit_scans_ = fit_smoothed_ < options_.status.fit_lost ? low_fit_scans_ + 1 : 0;
+  if (low_fit_scans_ >= options_.status.lost_after) {
     lost_ = true;
   }
-  const bool fits = fit_smoothed_ >= options_.fit_uncertain;
+  const bool fits = fit_smoothed_ >= options_.status.fit_uncertain;
   if (fits) {
     lost_ = false;
   }
-  if (global_ && fits && std::sqrt(std::max(e.covariance[0], e.covariance[4])) <= options_.uncertain_position_sigma) {
+  if (global_ && fits &&
+      std::sqrt(std::max(e.covariance[0], e.covariance[4])) <= options_.status.uncertain_position_sigma) {
     global_ = false;
   }
   // Motion noise from how well the prediction explained this scan.
-  const double deficit = (options_.fit_expected - fit) / std::max(options_.fit_expected - options_.fit_lost, 1e-6);
-  noise_gain_ = 1.0 + (options_.noise_gain_max - 1.0) * std::clamp(deficit, 0.0, 1.0);
+  const double deficit =
+      (options_.status.fit_expected - fit) / std::max(options_.status.fit_expected - options_.status.fit_lost, 1e-6);
+  noise_gain_ = 1.0 + (options_.motion.noise_gain_max - 1.0) * std::clamp(deficit, 0.0, 1.0);
 }
 
 void ParticleFilter::inject(const ScanPoints& points, UpdateResult* result) {
-  const int keep = static_cast<int>(options_.recovery_fraction * static_cast<double>(particles_.size()));
-  if (keep < 1 || options_.recovery_candidates < 1 || proposals_->empty()) {
+  const int keep = static_cast<int>(options_.recovery.fraction * static_cast<double>(particles_.size()));
+  if (keep < 1 || options_.recovery.candidates < 1 || proposals_->empty()) {
     return;
   }
   const std::vector<Pose2> poses =
-      proposals_->propose(field_, points, mount_, options_.recovery_candidates, keep, kProposalBeams, rng_);
+      proposals_->propose(field_, points, mount_, options_.recovery.candidates, keep, kProposalBeams, rng_);
   // They replace the least likely particles, with the weight of the most
   // likely one: this scan's full measurement model decides between them.
   std::vector<std::size_t> order(particles_.size());

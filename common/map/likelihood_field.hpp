@@ -25,6 +25,7 @@ struct LikelihoodFieldOptions {
   double z_max = 0.05;
   double z_rand = 0.05;
   double range_max = 30.0;  // [m]
+  bool operator==(const LikelihoodFieldOptions&) const = default;
 };
 
 // The distance beyond which the hit term is below 1e-4 of the random term, so

@@ -48,9 +48,9 @@ void run(benchmark::State& state, int particles, int beams, LocalizerMode mode, 
   const Fixture& f = fixture();
   LocalizerOptions options;
   if (!robust) {  // issue 9's additions off: fixed motion noise, no odometry correction, no recovery
-    options.noise_gain_max = 1.0;
-    options.odometry_correction_memory = 0.0;
-    options.recovery_candidates = 0;
+    options.motion.noise_gain_max = 1.0;
+    options.motion.odometry_correction_memory = 0.0;
+    options.recovery.candidates = 0;
   }
   options.mode = mode;
   options.particles = particles;

@@ -95,6 +95,26 @@ TEST(ShippedConfigs, EveryFileLoadsWithItsProgramsLoader) {
 }
 
 // The committed map files are exactly what their plan renders to.
+// Defaults live in one place: the shipped localizer config states them, and
+// the struct's must not silently differ (only the world's start may).
+TEST(ShippedConfigs, LocalizerDefaultsAreTheShippedOnes) {
+  const auto shipped =
+      load_options<LocalizerProcessConfig>(std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml").localizer;
+  const LocalizerOptions defaults;
+  EXPECT_EQ(shipped.mode, defaults.mode);
+  EXPECT_EQ(shipped.particles, defaults.particles);
+  EXPECT_EQ(shipped.seed, defaults.seed);
+  EXPECT_EQ(shipped.resample_threshold, defaults.resample_threshold);
+  EXPECT_EQ(shipped.initial_sigma, defaults.initial_sigma);
+  EXPECT_TRUE(shipped.motion == defaults.motion) << "motion:";
+  EXPECT_TRUE(shipped.lfm == defaults.lfm) << "lfm:";
+  EXPECT_TRUE(shipped.slfm == defaults.slfm) << "slfm:";
+  EXPECT_TRUE(shipped.slamer == defaults.slamer) << "slamer:";
+  EXPECT_TRUE(shipped.status == defaults.status) << "status:";
+  EXPECT_TRUE(shipped.recovery == defaults.recovery) << "recovery:";
+  EXPECT_TRUE(shipped.inputs == defaults.inputs) << "inputs:";
+}
+
 TEST(ShippedConfigs, BundledMapsMatchTheirPlans) {
   for (const std::string name : {"small_room", "paper_indoor"}) {
     const std::filesystem::path dir = std::filesystem::path(SLAMER_SOURCE_DIR) / "config/maps" / name;

@@ -219,8 +219,8 @@ TEST(LocalizerNode, WithoutOdometryTheParticlesFollowTheScans) {
   EXPECT_FALSE(node.health().odometry_missing);
   EXPECT_NEAR(back->estimate.pose.x, 2.8, 0.1);
   // The diffusion is what follows: with no_odometry_speed 0 the estimate is left behind.
-  options.no_odometry_speed = 0.0;
-  options.no_odometry_turn_rate = 0.0;
+  options.motion.no_odometry_speed = 0.0;
+  options.motion.no_odometry_turn_rate = 0.0;
   LocalizerNode still(w.map, options, w.robot.lidar.mount);
   const std::optional<UpdateResult> behind = drive_without_odometry(w, &still);
   ASSERT_TRUE(behind.has_value());
@@ -250,7 +250,7 @@ TEST(ParticleFilter, StatusSaysWhenItIsUncertainOrLost) {
   while (filter.update(elsewhere, nullptr).estimate.status != LocalizerStatus::kLost && scans_until_lost < 100) {
     ++scans_until_lost;
   }
-  EXPECT_EQ(scans_until_lost + 1, options.lost_after);
+  EXPECT_EQ(scans_until_lost + 1, options.status.lost_after);
   // Put back where it is: OK again at once.
   filter.initialize({8.5, 1.2, 2.5}, sigma);
   EXPECT_EQ(filter.update(elsewhere, nullptr).estimate.status, LocalizerStatus::kOk);

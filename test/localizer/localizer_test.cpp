@@ -60,25 +60,25 @@ TEST(MotionModel, NoiselessMotionIsExactAndNoiseHasTheRightSpread) {
   const Pose2 to = compose(from, {0.5, 0.1, -0.2});
   const OdometryIncrement u = decompose(from, to);
   LocalizerOptions exact;
-  exact.alpha_rot_from_rot = exact.alpha_rot_from_trans = exact.alpha_trans_from_trans = exact.alpha_trans_from_rot =
-      0.0;
+  exact.motion.alpha_rot_from_rot = exact.motion.alpha_rot_from_trans = exact.motion.alpha_trans_from_trans =
+      exact.motion.alpha_trans_from_rot = 0.0;
   std::mt19937 rng(1);
   const Pose2 start{-3.0, 4.0, 1.0};
-  const Pose2 moved = sample_motion(start, u, exact, rng);
+  const Pose2 moved = sample_motion(start, u, exact.motion, rng);
   const Pose2 expected = compose(start, between(from, to));
   EXPECT_NEAR(moved.x, expected.x, 1e-12);
   EXPECT_NEAR(moved.y, expected.y, 1e-12);
   EXPECT_NEAR(angle_diff(moved.theta, expected.theta), 0.0, 1e-12);
   // Straight 1 m: translation noise sd = alpha3 * 1 m.
   LocalizerOptions noisy;
-  noisy.alpha_trans_from_trans = 0.1;
-  noisy.alpha_rot_from_rot = noisy.alpha_rot_from_trans = noisy.alpha_trans_from_rot = 0.0;
+  noisy.motion.alpha_trans_from_trans = 0.1;
+  noisy.motion.alpha_rot_from_rot = noisy.motion.alpha_rot_from_trans = noisy.motion.alpha_trans_from_rot = 0.0;
   const OdometryIncrement straight = decompose({}, {1.0, 0.0, 0.0});
   double sum = 0.0;
   double squares = 0.0;
   const int n = 20000;
   for (int i = 0; i < n; ++i) {
-    const double x = sample_motion({}, straight, noisy, rng).x;
+    const double x = sample_motion({}, straight, noisy.motion, rng).x;
     sum += x;
     squares += x * x;
   }

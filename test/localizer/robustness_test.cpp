@@ -33,7 +33,7 @@ LocalizerOptions robust_options() {
   LocalizerOptions o;
   o.mode = LocalizerMode::kLfm;
   o.particles = 300;
-  o.beam_step = 2;
+  o.lfm.beam_step = 2;
   return o;
 }
 
@@ -279,11 +279,11 @@ TEST(MotionModel, ZeroIncrementSpreadsOnlyWhenTheGainIsUp) {
   double spread_rest = 0.0;
   double spread_up = 0.0;
   for (int i = 0; i < 2000; ++i) {
-    spread_rest = std::max(spread_rest, std::abs(sample_motion({}, zero, o, rng, 1.0).theta));
-    spread_up += std::pow(sample_motion({}, zero, o, rng, 4.0).theta, 2);
+    spread_rest = std::max(spread_rest, std::abs(sample_motion({}, zero, o.motion, rng, 1.0).theta));
+    spread_up += std::pow(sample_motion({}, zero, o.motion, rng, 4.0).theta, 2);
   }
   EXPECT_EQ(spread_rest, 0.0);  // a filter that explains its scans keeps the configured noise
-  EXPECT_NEAR(std::sqrt(spread_up / 2000), 3.0 * o.noise_floor_rot, 0.1 * 3.0 * o.noise_floor_rot);
+  EXPECT_NEAR(std::sqrt(spread_up / 2000), 3.0 * o.motion.noise_floor_rot, 0.1 * 3.0 * o.motion.noise_floor_rot);
 }
 
 }  // namespace

@@ -17,11 +17,16 @@ namespace slamer {
 std::string dataset_robot_yaml(const std::string& name, const LaserScan& scan, const Pose2& mount) {
   const int beams = static_cast<int>(scan.ranges.size());
   const double angle_max = scan.angle(scan.ranges.empty() ? 0 : scan.ranges.size() - 1);
-  char text[900];
+  char text[1200];
   std::snprintf(text, sizeof text,
                 "# Written by slamer-bench for %s: the laser where the log puts it (at the robot origin\n"
                 "# unless the log states an offset), its beam geometry from the first scan.\n"
                 "name: dataset\n"
+                "# Not an i-Cart: limits above what the logs' robots drive, so that only odometry\n"
+                "# glitches count as jumps in the localizer's input checks.\n"
+                "base:\n"
+                "  max_speed: 3.0\n"
+                "  max_yaw_rate: 6.3\n"
                 "lidar:\n"
                 "  frame: laser\n"
                 "  mount: [%.4f, %.4f, %.5f]\n"
@@ -49,7 +54,7 @@ std::string bench_localizer_config(const std::string& base_config, const BenchCo
   root["map"] = changes.map;
   root["robot"] = changes.robot;
   root["localizer"]["particles"] = changes.particles;
-  root["localizer"]["beam_step"] = changes.beam_step;
+  root["localizer"]["lfm"]["beam_step"] = changes.beam_step;
   std::ostringstream out;
   out << "# " << base_config << " with slamer-bench's particles, beam_step, map and robot.\n" << root << "\n";
   return out.str();

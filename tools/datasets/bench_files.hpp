@@ -24,7 +24,7 @@ struct BenchConfigChanges {
   std::string robot;
 };
 // The YAML of `base_config` with the changes applied (localizer.particles,
-// localizer.beam_step, map, robot). Throws ConfigError if it cannot be read.
+// localizer.lfm.beam_step, map, robot). Throws ConfigError if it cannot be read.
 std::string bench_localizer_config(const std::string& base_config, const BenchConfigChanges& changes);
 
 // The log up to its first scan (with its reference and odometry): a localizer
