@@ -1,6 +1,7 @@
 #include "localizer/input_checks.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -17,14 +18,24 @@ std::string format(const char* pattern, double a, double b = 0.0) {
 
 bool StreamTime::near(int64_t a, int64_t b) const {
   const double step = static_cast<double>(b - a) * 1e-6;
-  return step <= limits_.time_ahead && step >= -limits_.time_back;
+  // Until the stream's pace is known (its second message), a minute ahead is plausible.
+  const double ahead = mean_interval_ == 0.0 ? 60.0 : std::max(limits_.time_ahead, 10.0 * mean_interval_);
+  return step <= ahead && step >= -limits_.time_back;
+}
+
+void StreamTime::accept(int64_t utime) {
+  if (last_ && utime > *last_) {
+    const double interval = static_cast<double>(utime - *last_) * 1e-6;
+    mean_interval_ = mean_interval_ == 0.0 ? interval : 0.9 * mean_interval_ + 0.1 * interval;
+  }
+  last_ = utime;
+  candidate_.reset();
+  agreeing_ = 0;
 }
 
 TimeVerdict StreamTime::check(int64_t utime) {
   if (!last_ || near(*last_, utime)) {
-    last_ = utime;
-    candidate_.reset();
-    agreeing_ = 0;
+    accept(utime);
     return TimeVerdict::kAccept;
   }
   // Far from the stream: the start of a move only if the next ones agree.
@@ -35,9 +46,8 @@ TimeVerdict StreamTime::check(int64_t utime) {
   }
   candidate_ = utime;
   if (agreeing_ >= limits_.confirm) {
-    last_ = utime;
-    candidate_.reset();
-    agreeing_ = 0;
+    mean_interval_ = 0.0;  // a new stretch of the stream: its pace is learned again
+    accept(utime);
     return TimeVerdict::kMoved;
   }
   return TimeVerdict::kRefuse;

@@ -12,7 +12,8 @@
 // A message far from its stream's time (the future, or well into the past)
 // is refused, unless the stream as a whole has moved there: `confirm`
 // messages in a row that agree with each other; then the stream has moved
-// and the caller is told so. No clock: times come with the messages.
+// and the caller is told so (and may then use the ones it held back). No
+// clock: times come with the messages.
 #pragma once
 
 #include <array>
@@ -48,11 +49,15 @@ class StreamTime {
  public:
   explicit StreamTime(const InputLimits& limits) : limits_(limits) {}
   TimeVerdict check(int64_t utime);
+  // Far messages in a row that agree so far (1: the last refused one starts a new run).
+  int agreeing() const { return agreeing_; }
 
  private:
   bool near(int64_t a, int64_t b) const;
+  void accept(int64_t utime);
   InputLimits limits_;
   std::optional<int64_t> last_;
+  double mean_interval_ = 0.0;        // [s] of accepted messages, smoothed
   std::optional<int64_t> candidate_;  // the last far message
   int agreeing_ = 0;
 };

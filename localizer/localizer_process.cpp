@@ -108,15 +108,29 @@ void LocalizerProcess::on_scan(const laser_scan_t& message, const ReceiveInfo& i
     refuse(config_.channels.lidar, problem);
     return;
   }
+  const auto refuse_held = [this] {
+    for (const auto& [held, arrival] : held_scans_) {
+      refuse(config_.channels.lidar, "utime far from the stream's (" + std::to_string(held.utime) + ")");
+    }
+    held_scans_.clear();
+  };
   switch (scan_time_.check(scan.utime)) {
     case TimeVerdict::kRefuse:
-      refuse(config_.channels.lidar, "utime far from the stream's (" + std::to_string(scan.utime) + ")");
+      if (scan_time_.agreeing() == 1) {
+        refuse_held();  // the ones before did not agree with this one
+      }
+      held_scans_.emplace_back(scan, info.receive_utime);
       return;
     case TimeVerdict::kMoved:
       bus_.log_warning(config_.channels.lidar + "'s time moved to " + std::to_string(scan.utime) +
                        " (several scans agree): following it");
+      for (const auto& [held, arrival] : held_scans_) {
+        node_.on_scan(held, arrival);
+      }
+      held_scans_.clear();
       break;
     case TimeVerdict::kAccept:
+      refuse_held();
       break;
   }
   node_.on_scan(scan, info.receive_utime);

@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "common/process/bus.hpp"
 #include "common/robot/robot_options.hpp"
@@ -55,6 +56,10 @@ class LocalizerProcess {
   std::optional<std::pair<int64_t, Pose2>> last_odometry_;
   std::optional<int64_t> last_initial_pose_;  // bus time
   RefusalCounter refused_;
+  // Scans far from the stream's time, held until the next ones say whether
+  // the stream moved there (a gap in a log, a sensor back after minutes) or
+  // they were odd ones (then refused).
+  std::vector<std::pair<LaserScan, int64_t>> held_scans_;
   int64_t last_particles_utime_;
   int64_t scans_published_ = 0;
 };

@@ -62,6 +62,15 @@ TEST(InputChecks, OneMessageFarInTimeIsRefusedButAStreamThatMovedIsFollowed) {
   EXPECT_EQ(time.check(kT0 - 59'925'000), TimeVerdict::kAccept);
 }
 
+TEST(InputChecks, ASparseStreamMayStepAsFarAsItsPaceSays) {
+  StreamTime time{InputLimits{}};
+  // A log with a scan every 3 s (aces): 2 s is no bound for it.
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_EQ(time.check(kT0 + 3'000'000LL * k), TimeVerdict::kAccept) << k;
+  }
+  EXPECT_EQ(time.check(kT0 + 3'000'000LL * 19 + 3'600'000'000LL), TimeVerdict::kRefuse);  // an hour is still far
+}
+
 TEST(InputChecks, OdometryFasterThanTheRobotIsAJump) {
   const InputLimits limits;  // 0.9 m/s, 3.14 rad/s, 5 cm / 0.05 rad margin
   EXPECT_EQ(odometry_step_problem({0, 0, 0}, kT0, {0.01, 0, 0.02}, kT0 + 10'000, limits), "");
