@@ -144,16 +144,30 @@ void LocalizerProcess::on_odometry(const odometry_t& m) {
     refuse(channel, "not a finite pose at a time");  // one NaN would carry into every particle
     return;
   }
+  const auto refuse_held = [&] {
+    for (const auto& [utime, held] : held_odometry_) {
+      refuse(channel, "utime far from the stream's (" + std::to_string(utime) + ")");
+    }
+    held_odometry_.clear();
+  };
   switch (odometry_time_.check(m.utime)) {
     case TimeVerdict::kRefuse:
-      refuse(channel, "utime far from the stream's (" + std::to_string(m.utime) + ")");
+      if (odometry_time_.agreeing() == 1) {
+        refuse_held();
+      }
+      held_odometry_.emplace_back(m.utime, pose);
       return;
     case TimeVerdict::kMoved:
       bus_.log_warning(channel + "'s time moved to " + std::to_string(m.utime) +
                        " (several messages agree): a new reference");
       node_.restart_odometry();
+      for (const auto& [utime, held] : held_odometry_) {
+        node_.on_odometry(utime, held);
+      }
+      held_odometry_.clear();
       break;
     case TimeVerdict::kAccept:
+      refuse_held();
       if (last_odometry_) {
         const auto& [from_utime, from] = *last_odometry_;
         if (const std::string jump = odometry_step_problem(from, from_utime, pose, m.utime, limits_); !jump.empty()) {

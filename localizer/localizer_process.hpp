@@ -60,6 +60,7 @@ class LocalizerProcess {
   // the stream moved there (a gap in a log, a sensor back after minutes) or
   // they were odd ones (then refused).
   std::vector<std::pair<LaserScan, int64_t>> held_scans_;
+  std::vector<std::pair<int64_t, Pose2>> held_odometry_;  // the same for odometry
   int64_t last_particles_utime_;
   int64_t scans_published_ = 0;
 };
