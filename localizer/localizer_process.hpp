@@ -33,6 +33,9 @@ class LocalizerProcess {
   // `keep_pose`: use config.pose_file (live runs; a replay leaves the robot's file alone).
   LocalizerProcess(Bus& bus, const LocalizerProcessConfig& config, const RobotOptions& robot, LocalizerNode node,
                    bool keep_pose);
+  // The bus holds callbacks that point at this object: it stays where it was made.
+  LocalizerProcess(const LocalizerProcess&) = delete;
+  LocalizerProcess& operator=(const LocalizerProcess&) = delete;
 
   const LocalizerNode& node() const { return node_; }
   int64_t scans_published() const { return scans_published_; }

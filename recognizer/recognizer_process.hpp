@@ -30,6 +30,9 @@ int64_t missed_scans(int64_t last_seq, int64_t last_utime, const laser_scan_t& s
 class RecognizerProcess {
  public:
   RecognizerProcess(Bus& bus, const RecognizerProcessConfig& config);
+  // The bus holds callbacks that point at this object: it stays where it was made.
+  RecognizerProcess(const RecognizerProcess&) = delete;
+  RecognizerProcess& operator=(const RecognizerProcess&) = delete;
 
   int64_t scans_recognized() const { return recognized_; }
   int64_t scans_missed() const { return missed_; }
