@@ -91,6 +91,18 @@ void read_options(const ConfigReader& reader, RecoveryOptions* o) {
   reader.read("fraction", &o->fraction, probability());
 }
 
+void read_options(const ConfigReader& reader, ResumeOptions* o) {
+  reader.read("speed", &o->speed, non_negative());
+  reader.read("turn_rate", &o->turn_rate, non_negative());
+  reader.read("moved_fraction", &o->moved_fraction, probability());
+  reader.read("max_downtime", &o->max_downtime, non_negative());
+  reader.read("confirm_scans", &o->confirm_scans, in_range(1, 100000));
+  reader.read("confirm_within", &o->confirm_within, in_range(1, 100000));
+  if (o->confirm_within < o->confirm_scans) {
+    reader.fail("confirm_within", "must be at least confirm_scans");
+  }
+}
+
 void read_options(const ConfigReader& reader, InputOptions* o) {
   reader.read("scan_timeout", &o->scan_timeout, in_range(0.01, 60.0));
   reader.read("objects_wait", &o->objects_wait, in_range(0.0, 10.0));
@@ -115,6 +127,7 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   read_options(reader.section("slamer"), &o->slamer);
   read_options(reader.section("status"), &o->status);
   read_options(reader.section("recovery"), &o->recovery);
+  read_options(reader.section("resume"), &o->resume);
   read_options(reader.section("inputs"), &o->inputs);
 }
 

@@ -93,6 +93,19 @@ struct RecoveryOptions {
   bool operator==(const RecoveryOptions&) const = default;
 };
 
+// Resuming from the pose file after a restart (LocalizerNode::resume): the
+// robot may have moved while the process was down.
+struct ResumeOptions {
+  double speed = 0.5;      // [m/s] the saved position's sigma grows by this x the downtime
+  double turn_rate = 0.5;  // [rad/s] and its heading's (at most pi)
+  double moved_fraction =
+      0.5;  // of the particles so spread; the rest at the saved sigma (most restarts are on the spot)
+  double max_downtime = 600.0;  // [s] down longer, or saved after the first scan: global localization
+  int confirm_scans = 10;       // scans in a row that fit the map there before the status may say OK
+  int confirm_within = 80;      // not confirmed within this many scans: global localization takes over
+  bool operator==(const ResumeOptions&) const = default;
+};
+
 // Input streams (LocalizerNode).
 struct InputOptions {
   double scan_timeout = 2.0;      // [s] no scan for this long: no pose, PROCESS_STATUS says so
@@ -115,6 +128,7 @@ struct LocalizerOptions {
   SlamerOptions slamer;
   StatusOptions status;
   RecoveryOptions recovery;
+  ResumeOptions resume;
   InputOptions inputs;
 };
 void read_options(const ConfigReader& reader, LocalizerOptions* options);

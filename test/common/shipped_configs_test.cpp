@@ -112,6 +112,7 @@ TEST(ShippedConfigs, LocalizerDefaultsAreTheShippedOnes) {
   EXPECT_TRUE(shipped.slamer == defaults.slamer) << "slamer:";
   EXPECT_TRUE(shipped.status == defaults.status) << "status:";
   EXPECT_TRUE(shipped.recovery == defaults.recovery) << "recovery:";
+  EXPECT_TRUE(shipped.resume == defaults.resume) << "resume:";
   EXPECT_TRUE(shipped.inputs == defaults.inputs) << "inputs:";
 }
 
