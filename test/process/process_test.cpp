@@ -21,6 +21,7 @@
 #include "slamer/velocity_command_t.hpp"
 #include "slamer/wheel_encoders_t.hpp"
 #include "test/support/child_process.hpp"
+#include "test/support/lcm_test_bus.hpp"
 
 namespace slamer {
 namespace {
@@ -30,9 +31,7 @@ using test::ChildProcess;
 
 template <class Msg>
 std::vector<uint8_t> encode(const Msg& msg) {
-  std::vector<uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
-  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
+  return test::LcmTestBus::encode(msg);
 }
 
 laser_scan_t make_scan(int64_t seq) {
@@ -54,66 +53,12 @@ laser_scan_t make_scan(int64_t seq) {
   return scan;
 }
 
-// The test's own end of the LCM bus: publishes raw bytes and collects decoded messages.
-class Bus {
- public:
-  explicit Bus(const std::string& url) : lcm_(url) { EXPECT_TRUE(lcm_.good()) << "cannot open " << url; }
-
-  void publish_raw(const std::string& channel, const std::vector<uint8_t>& bytes) {
-    lcm_.publish(channel, bytes.data(), static_cast<unsigned int>(bytes.size()));
-  }
-  template <class Msg>
-  void publish(const std::string& channel, const Msg& msg) {
-    publish_raw(channel, encode(msg));
-  }
-
-  template <class Msg>
-  std::vector<Msg>* collect(const std::string& channel) {
-    auto store = std::make_shared<std::vector<Msg>>();
-    stores_.push_back(store);
-    handlers_.push_back(
-        std::make_unique<std::function<void(const lcm::ReceiveBuffer*)>>([store](const lcm::ReceiveBuffer* buffer) {
-          Msg msg;
-          if (decode_message(buffer->data, buffer->data_size, &msg) == DecodeStatus::kOk) {
-            store->push_back(msg);
-          }
-        }));
-    lcm_.subscribeFunction(
-        channel,
-        +[](const lcm::ReceiveBuffer* buffer, const std::string&, std::function<void(const lcm::ReceiveBuffer*)>* f) {
-          (*f)(buffer);
-        },
-        handlers_.back().get());
-    return store.get();
-  }
-
-  // Handles messages until `done` is true or `timeout_s` passes; `tick` runs every 50 ms.
-  bool pump_until(const std::function<bool()>& done, double timeout_s, const std::function<void()>& tick = {}) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    auto next_tick = std::chrono::steady_clock::now();
-    while (!done()) {
-      if (std::chrono::steady_clock::now() >= deadline) {
-        return false;
-      }
-      if (tick && std::chrono::steady_clock::now() >= next_tick) {
-        tick();
-        next_tick += std::chrono::milliseconds(50);
-      }
-      lcm_.handleTimeout(10);
-    }
-    return true;
-  }
-
- private:
-  lcm::LCM lcm_;
-  std::vector<std::shared_ptr<void>> stores_;
-  std::vector<std::unique_ptr<std::function<void(const lcm::ReceiveBuffer*)>>> handlers_;
-};
+using Bus = test::LcmTestBus;
 
 TEST(Processes, TwoProcessesExchangeMessagesOverMulticast) {
   const std::string url = test::unique_lcm_url(1);
   Bus bus(url);
-  auto* echoes = bus.collect<laser_scan_t>("LIDAR_ECHO");
+  const auto* echoes = &bus.collect<laser_scan_t>("LIDAR_ECHO");
   ChildProcess echo(binary_path("slamer-test-echo"), {"--lcm-url", url});
   ChildProcess status(binary_path("slamer-status"),
                       {"--lcm-url", url, "--once", "3", "--expect", "slamer-test-echo", "--json"});
@@ -122,7 +67,7 @@ TEST(Processes, TwoProcessesExchangeMessagesOverMulticast) {
   ASSERT_TRUE(bus.pump_until([&] { return !echoes->empty(); }, 5.0, [&] { bus.publish("LIDAR", make_scan(++seq)); }))
       << "no echo; echo stderr:\n"
       << echo.stderr_text();
-  const laser_scan_t& got = echoes->front();
+  const laser_scan_t& got = echoes->front().msg;
   EXPECT_GE(got.seq, 1);
   EXPECT_EQ(got.utime, 1'700'000'000'000'000 + got.seq);
   ASSERT_EQ(got.ranges.size(), 1081u);
@@ -173,8 +118,8 @@ std::map<std::string, std::vector<uint8_t>> valid_messages() {
 TEST(Processes, GarbageOnEveryChannelIsCountedAndSurvived) {
   const std::string url = test::unique_lcm_url(2);
   Bus bus(url);
-  auto* echoes = bus.collect<laser_scan_t>("LIDAR_ECHO");
-  auto* statuses = bus.collect<process_status_t>("PROCESS_STATUS");
+  const auto* echoes = &bus.collect<laser_scan_t>("LIDAR_ECHO");
+  const auto* statuses = &bus.collect<process_status_t>("PROCESS_STATUS");
   ChildProcess echo(binary_path("slamer-test-echo"), {"--lcm-url", url});
   ASSERT_TRUE(bus.pump_until([&] { return !echoes->empty(); }, 5.0, [&] { bus.publish("LIDAR", make_scan(1)); }))
       << echo.stderr_text();
@@ -217,7 +162,7 @@ TEST(Processes, GarbageOnEveryChannelIsCountedAndSurvived) {
 
   // Its PROCESS_STATUS counts every bad message on the channel it came in on.
   const auto counted_all = [&] {
-    for (const process_status_t& s : *statuses) {
+    for (const auto& [s, received_at] : *statuses) {
       if (s.process != "slamer-test-echo") {
         continue;
       }
@@ -240,7 +185,7 @@ TEST(Processes, GarbageOnEveryChannelIsCountedAndSurvived) {
   for (const auto& [channel, n] : sent_bad) {
     total_bad += n;
   }
-  EXPECT_EQ(statuses->back().decode_errors, total_bad);
+  EXPECT_EQ(statuses->back().msg.decode_errors, total_bad);
 
   echo.signal(SIGINT);
   ASSERT_EQ(echo.wait(3.0), std::optional<int>(0));
