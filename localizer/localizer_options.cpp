@@ -2,11 +2,23 @@
 
 #include "common/config/config_reader.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "common/robot/robot_options.hpp"
 
 namespace slamer {
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) {
+    text += (text.empty() ? "" : ", ") + name;
+  }
+  return text;
+}
+
+}  // namespace
 
 LocalizerMode parse_mode(const std::string& text) {
   if (text == "lfm") {
@@ -61,6 +73,10 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
   reader.read("object_weight", &o->object_weight, in_range(0.0, 10.0));
   reader.read("object_samples", &o->object_samples, in_range(1, 50));
   reader.read("min_probability", &o->min_probability, in_range(1e-12, 0.1));
+  reader.read("recognition_classes", &o->recognition_classes);
+  if (o->recognition_classes.empty()) {
+    reader.fail("recognition_classes", "the list is empty");
+  }
   if (reader.has("class_map")) {
     const ConfigReader classes = reader.section("class_map");
     o->class_map.clear();
@@ -68,6 +84,19 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
       std::string map_class;
       classes.read(name, &map_class);
       o->class_map[name] = map_class;
+    }
+  }
+  // Every entry names a class the recognizer emits (the default table too, against a configured list).
+  for (const auto& entry : o->class_map) {
+    const std::string& name = entry.first;
+    const auto& known = o->recognition_classes;
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      const std::string problem =
+          "'" + name + "' is not a class the recognizer emits (recognition_classes: " + join(known) + ")";
+      if (reader.section("class_map").has(name)) {
+        reader.section("class_map").fail(name, problem);
+      }
+      reader.fail("recognition_classes", "class_map's " + problem);
     }
   }
 }

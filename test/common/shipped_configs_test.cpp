@@ -13,6 +13,7 @@
 #include "common/robot/robot_options.hpp"
 #include "drivers/urg/urg_options.hpp"
 #include "drivers/wheels/wheels_options.hpp"
+#include "localizer/class_map_check.hpp"
 #include "localizer/localizer_config.hpp"
 #include "recognizer/recognizer_config.hpp"
 #include "test/support/child_process.hpp"
@@ -113,6 +114,16 @@ TEST(ShippedConfigs, LocalizerDefaultsAreTheShippedOnes) {
   EXPECT_TRUE(shipped.status == defaults.status) << "status:";
   EXPECT_TRUE(shipped.recovery == defaults.recovery) << "recovery:";
   EXPECT_TRUE(shipped.inputs == defaults.inputs) << "inputs:";
+}
+
+// The localizer expects the classes the shipped recognizer emits, and its
+// class_map fits the shipped map (the check slamer-localizer runs at start-up).
+TEST(ShippedConfigs, LocalizerClassesAreTheRecognizersAndTheMaps) {
+  const std::string dir = std::string(SLAMER_SOURCE_DIR) + "/config/";
+  const auto localizer = load_options<LocalizerProcessConfig>(dir + "localizer.yaml");
+  const auto recognizer = load_options<RecognizerProcessConfig>(dir + "recognizer.yaml");
+  EXPECT_EQ(localizer.localizer.slamer.recognition_classes, recognizer.recognizer.classes);
+  EXPECT_EQ(class_map_problem(localizer.localizer, load_semantic_map(localizer.map)), "");
 }
 
 TEST(ShippedConfigs, BundledMapsMatchTheirPlans) {
