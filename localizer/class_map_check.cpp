@@ -17,19 +17,26 @@ std::string join(const std::vector<std::string>& names) {
 
 }  // namespace
 
+std::string recognition_class_problem(const SlamerOptions& options, const std::string& name) {
+  const std::vector<std::string>& known = options.recognition_classes;
+  if (std::find(known.begin(), known.end(), name) != known.end()) {
+    return "";
+  }
+  return "'" + name + "' is not a class the recognizer emits (recognition_classes: " + join(known) + ")";
+}
+
 std::string class_map_problem(const LocalizerOptions& options, const SemanticMap& map) {
   if (options.mode == LocalizerMode::kLfm) {
     return "";
   }
-  const std::vector<std::string>& recognized = options.slamer.recognition_classes;
   std::vector<std::string> map_classes;
   for (const SemanticClass& c : map.classes) {
     map_classes.push_back(c.name);
   }
   for (const auto& [name, map_class] : options.slamer.class_map) {
     const std::string key = "key 'localizer.slamer.class_map." + name + "': ";
-    if (std::find(recognized.begin(), recognized.end(), name) == recognized.end()) {
-      return key + "'" + name + "' is not a class the recognizer emits (recognition_classes: " + join(recognized) + ")";
+    if (const std::string problem = recognition_class_problem(options.slamer, name); !problem.empty()) {
+      return key + problem;
     }
     if (!map_class.empty() && map.class_index(map_class) < 0) {
       return key + "'" + map_class + "' is not a class of the map (it has: " + join(map_classes) +

@@ -14,6 +14,10 @@
 
 namespace slamer {
 
+// "'NAME' is not a class the recognizer emits (recognition_classes: ...)", or
+// "" when `name` is one (also the options loader's check, with file and line).
+std::string recognition_class_problem(const SlamerOptions& options, const std::string& name);
+
 // The first problem, "key 'localizer.slamer.class_map.NAME': ...", or "".
 std::string class_map_problem(const LocalizerOptions& options, const SemanticMap& map);
 

@@ -2,23 +2,12 @@
 
 #include "common/config/config_reader.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include "common/robot/robot_options.hpp"
+#include "localizer/class_map_check.hpp"
 
 namespace slamer {
-namespace {
-
-std::string join(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& name : names) {
-    text += (text.empty() ? "" : ", ") + name;
-  }
-  return text;
-}
-
-}  // namespace
 
 LocalizerMode parse_mode(const std::string& text) {
   if (text == "lfm") {
@@ -88,13 +77,9 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
   }
   // Every entry names a class the recognizer emits (the default table too, against a configured list).
   for (const auto& entry : o->class_map) {
-    const std::string& name = entry.first;
-    const auto& known = o->recognition_classes;
-    if (std::find(known.begin(), known.end(), name) == known.end()) {
-      const std::string problem =
-          "'" + name + "' is not a class the recognizer emits (recognition_classes: " + join(known) + ")";
-      if (reader.section("class_map").has(name)) {
-        reader.section("class_map").fail(name, problem);
+    if (const std::string problem = recognition_class_problem(*o, entry.first); !problem.empty()) {
+      if (reader.section("class_map").has(entry.first)) {
+        reader.section("class_map").fail(entry.first, problem);
       }
       reader.fail("recognition_classes", "class_map's " + problem);
     }
