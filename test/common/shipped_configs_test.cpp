@@ -17,6 +17,7 @@
 #include "localizer/localizer_config.hpp"
 #include "recognizer/recognizer_config.hpp"
 #include "test/support/child_process.hpp"
+#include "tools/annotate/object_list.hpp"
 #include "tools/eval/eval_config.hpp"
 #include "tools/sim/floor_plan.hpp"
 #include "tools/sim/sim_config.hpp"
@@ -69,6 +70,13 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
       {"maps/paper_indoor/plan.yaml", [](const std::string& path) { load_options<FloorPlan>(path); }},
       {"maps/small_room/map.yaml", load_map},
       {"maps/paper_indoor/map.yaml", load_map},
+      {"maps/examples/small_room_slam.yaml", load_map},
+      {"maps/examples/objects_example.yaml",
+       [](const std::string& path) {
+         const SemanticMap map =
+             load_semantic_map((std::filesystem::path(path).parent_path() / "small_room_slam.yaml").string());
+         EXPECT_GT(load_object_list(path, map).objects.size(), 0u);
+       }},
   };
   return table;
 }
