@@ -101,6 +101,15 @@ TEST(ObjectCells, WorkInTheGridOfARotatedOriginAndClipAtTheEdge) {
   EXPECT_EQ(object_cells(line({{0.25, 0.05}, {0.45, 0.05}}, 0.3), flat), cells_in(flat, 1, 0, 5, 1));
 }
 
+struct TempDir {
+  std::filesystem::path path = std::filesystem::temp_directory_path() /
+                               ("slamer_annotate_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  TempDir() { std::filesystem::create_directories(path); }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  std::string file(const std::string& name) const { return (path / name).string(); }
+};
+
 // A 6 m x 4 m map at 0.1 m: walls on the border, free inside.
 SemanticMap walled_map() {
   SemanticMap map;
@@ -203,6 +212,26 @@ TEST(ObjectList, EveryProblemIsOneLineNamingFileLineAndObject) {
   EXPECT_EQ(error("classes: []\n"), "obj.yaml:1: key 'objects': missing (this key is required)");
 }
 
+TEST(ObjectList, AMapsOwnTableIsKeptAndTheProjectsClassesFitAroundIt) {
+  SemanticMap map = walled_map();
+  map.classes = {{"stairs: down", {255, 0, 0}}, {"door", {10, 10, 10}}};  // no_entry_line's colour, door's name
+  const ObjectList list = objects("objects:\n  - {class: no_entry_line, line: [1, 1, 2, 1]}\n", map);
+  ASSERT_EQ(list.classes.size(), 6u);
+  EXPECT_EQ(list.classes[0].name, "stairs: down");
+  EXPECT_EQ(list.classes[1].rgb, (std::array<uint8_t, 3>{10, 10, 10}));  // the map's door colour kept
+  EXPECT_EQ(list.classes[4].name, "no_entry_line");
+  EXPECT_EQ(list.classes[4].rgb, (std::array<uint8_t, 3>{255, 0, 1}));  // the next free colour
+  // The written table loads back with the odd name.
+  TempDir dir;
+  map.labels[map.geometry.index(5, 5)] = 0;
+  write_semantic_map(annotate_map(map, list), dir.path.string(), "a test");
+  const SemanticMap loaded = load_semantic_map(dir.file("map.yaml"));
+  EXPECT_EQ(loaded.labels[loaded.geometry.index(5, 5)], loaded.class_index("stairs: down"));
+  EXPECT_EQ(loaded.labels[loaded.geometry.index(15, 10)], loaded.class_index("no_entry_line"));
+  EXPECT_EQ(error("classes:\n  - {name: 'a b', color: [1, 2, 3]}\nobjects: []\n"),
+            "obj.yaml:2: key 'classes[0].name': 'a b': a class name is letters, digits, '_', '-' and '.'");
+}
+
 TEST(AnnotateMap, PaintsClassesAndOccupancyInOrderOverTheMapsLabels) {
   SemanticMap map = walled_map();
   map.classes = {{"others", {0, 0, 0}}, {"fence", {1, 2, 3}}};  // an input table of its own
@@ -238,15 +267,6 @@ TEST(AnnotateMap, PaintsClassesAndOccupancyInOrderOverTheMapsLabels) {
   EXPECT_EQ(summary.cells_per_object, (std::vector<int64_t>{10, 40, 6}));
   EXPECT_EQ(summary.occupancy_changed, 10 + 1);  // the door closed, one of its cells opened again
 }
-
-struct TempDir {
-  std::filesystem::path path = std::filesystem::temp_directory_path() /
-                               ("slamer_annotate_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  TempDir() { std::filesystem::create_directories(path); }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
 
 TEST(AnnotateMap, TheWrittenMapLoadsAsPaintedWithItsGeometry) {
   TempDir dir;

@@ -1,6 +1,7 @@
 #include "tools/annotate/annotate.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -25,6 +26,21 @@ std::string number(double value) {
   char text[40];
   std::snprintf(text, sizeof text, "%.12g", value);
   return text;
+}
+
+// A class name as a YAML scalar: plain if it is a plain word, else single-quoted (a map's own names may be anything).
+std::string yaml_string(const std::string& name) {
+  const bool plain =
+      !name.empty() && std::isalpha(static_cast<unsigned char>(name[0])) &&
+      name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") == std::string::npos;
+  if (plain) {
+    return name;
+  }
+  std::string quoted = "'";
+  for (const char ch : name) {
+    quoted += ch == '\'' ? "''" : std::string(1, ch);
+  }
+  return quoted + "'";
 }
 
 }  // namespace
@@ -98,8 +114,8 @@ void write_semantic_map(const SemanticMap& map, const std::string& directory, co
        << number(g.origin.x) << ", " << number(g.origin.y) << ", " << number(g.origin.theta)
        << "]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nsemantic:\n  image: semantic.png\n  classes:\n";
   for (const SemanticClass& c : map.classes) {
-    yaml << "    - {name: " << c.name << ", color: [" << int{c.rgb[0]} << ", " << int{c.rgb[1]} << ", " << int{c.rgb[2]}
-         << "]}\n";
+    yaml << "    - {name: " << yaml_string(c.name) << ", color: [" << int{c.rgb[0]} << ", " << int{c.rgb[1]} << ", "
+         << int{c.rgb[2]} << "]}\n";
   }
   if (!yaml) {
     throw std::runtime_error("cannot write " + directory + "/map.yaml");

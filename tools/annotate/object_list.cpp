@@ -36,19 +36,36 @@ void add_class(const SemanticClass& c, std::vector<SemanticClass>* table, Fail f
   table->push_back(c);
 }
 
+// A project class whose colour the map's table already uses gets the next free one.
+SemanticClass with_free_colour(SemanticClass c, const std::vector<SemanticClass>& table) {
+  const auto taken = [&](const std::array<uint8_t, 3>& rgb) {
+    return reserved(rgb) ||
+           std::any_of(table.begin(), table.end(), [&](const SemanticClass& k) { return k.rgb == rgb; });
+  };
+  for (int step = 0; step < 256 * 256 && taken(c.rgb); ++step) {
+    c.rgb[2] = static_cast<uint8_t>(c.rgb[2] + 1);
+    if (c.rgb[2] == 0) {
+      c.rgb[1] = static_cast<uint8_t>(c.rgb[1] + 1);
+    }
+  }
+  return c;
+}
+
 std::vector<SemanticClass> read_classes(const ConfigReader& reader, const SemanticMap& map) {
   std::vector<SemanticClass> table = map.classes;
   for (const SemanticClass& c : project_classes()) {
-    add_class(c, &table, [&](const std::string& problem) {
-      reader.fail("classes", "the map's table clashes with the project's: " + problem);
-    });
+    if (table.size() < 127) {
+      add_class(with_free_colour(c, table), &table, [](const std::string&) {});
+    }
   }
   for (const ConfigReader& entry : reader.list("classes")) {
     SemanticClass c;
     entry.require("name");
     entry.read("name", &c.name);
-    if (c.name.empty()) {
-      entry.fail("name", "must not be empty");
+    if (c.name.empty() ||
+        c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") !=
+            std::string::npos) {
+      entry.fail("name", "'" + c.name + "': a class name is letters, digits, '_', '-' and '.'");
     }
     if (std::any_of(table.begin(), table.end(), [&](const SemanticClass& k) { return k.name == c.name; })) {
       entry.fail("name", "'" + c.name + "' is already a class (" + class_names(table) + ")");
