@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "localizer/class_map_check.hpp"
+
 namespace slamer {
 namespace {
 
@@ -21,7 +23,7 @@ int64_t microseconds(double s) {
 }  // namespace
 
 LocalizerNode::LocalizerNode(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount)
-    : options_(options),
+    : options_((check_class_map(options, map), options)),  // before the map's fields are built
       filter_(map, options, lidar_mount),
       start_pose_(options.initial_pose),
       start_sigma_(options.initial_sigma) {

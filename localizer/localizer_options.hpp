@@ -9,6 +9,7 @@
 
 #include "common/geometry/se2.hpp"
 #include "common/map/likelihood_field.hpp"
+#include "common/semantic/objects.hpp"
 
 namespace slamer {
 
@@ -59,7 +60,12 @@ struct SlamerOptions {
   double object_weight = 5.0;     // exponent on each object's term (tuned on paper_indoor)
   int object_samples = 3;         // points along an object for its representative distance
   double min_probability = 1e-3;  // recognizer probabilities are floored before log
+  // The classes the recognizer emits (its config's `classes`, in LINE_OBJECTS).
+  std::vector<std::string> recognition_classes = paper_recognition_classes();
   // Recognition class -> the map class whose cells it lies on ("" = free space).
+  // Every key must be in recognition_classes (checked when the options are read)
+  // and every value a class the map declares (class_map_check.hpp, when the
+  // localizer is built on its map).
   std::map<std::string, std::string> class_map{{"open_door", "door"},
                                                {"closed_door", "door"},
                                                {"open_glass_door", "glass_door"},
