@@ -21,6 +21,7 @@
 #include "slamer/laser_scan_t.hpp"
 #include "slamer/process_status_t.hpp"
 #include "test/support/child_process.hpp"
+#include "test/support/driver_processes.hpp"
 #include "tools/urg_sim/sim_sensor.hpp"
 
 namespace slamer {
@@ -65,46 +66,16 @@ struct Bus {
   std::vector<process_status_t> statuses;
 };
 
-std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / (name + "_" + std::to_string(getpid()))).string();
-}
+using test::free_port;
+using test::temp_path;
 
-int free_port() {
-  const int s = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(s, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
-  socklen_t len = sizeof addr;
-  getsockname(s, reinterpret_cast<sockaddr*>(&addr), &len);
-  close(s);
-  return ntohs(addr.sin_port);
-}
-
-// Starts the emulator and waits for its port.
 std::unique_ptr<test::ChildProcess> start_sim(std::vector<std::string> args, int* port) {
-  const std::string port_file = temp_path("urg_port");
-  std::filesystem::remove(port_file);
-  args.insert(args.end(), {"--port-file", port_file});
-  if (*port > 0) {
-    args.insert(args.end(), {"--port", std::to_string(*port)});
-  }
-  auto sim = std::make_unique<test::ChildProcess>(test::binary_path("slamer-urg-sim"), args);
-  for (int i = 0; i < 200 && !std::filesystem::exists(port_file); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  *port = std::stoi(test::read_file(port_file));
-  return sim;
+  return test::start_urg_sim(std::move(args), port);
 }
 
 std::unique_ptr<test::ChildProcess> start_driver(const std::string& url, int port,
                                                  std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"--config",  std::string(SLAMER_SOURCE_DIR) + "/config/urg.yaml",
-                                   "--host",    "127.0.0.1",
-                                   "--port",    std::to_string(port),
-                                   "--lcm-url", url};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return std::make_unique<test::ChildProcess>(test::binary_path("slamer-urg"), args);
+  return test::start_urg(url, port, extra);
 }
 
 TEST(UrgProcess, PublishesScansWithPpGeometryAndTheSceneRanges) {

@@ -13,6 +13,7 @@
 #include "common/process/command_line.hpp"
 #include "common/process/lcm_bus.hpp"
 #include "common/process/process_main.hpp"
+#include "tools/tfrog_sim/encoder_source.hpp"
 #include "tools/tfrog_sim/pty_port.hpp"
 #include "tools/tfrog_sim/tfrog_board.hpp"
 #include "tools/tfrog_sim/wheel_path.hpp"
@@ -38,6 +39,11 @@ int run(const slamer::CommandLine& cli) {
   std::optional<PathPlayer> path;
   if (cli.has("path")) {
     path.emplace(parse_path(cli.get("path")), kinematics);
+  }
+  EncoderFollower follower(kinematics);
+  std::optional<EncoderSource> source;
+  if (cli.has("source-channel")) {
+    source.emplace(cli.get("lcm-url"), cli.get("source-channel"), &follower);
   }
   auto new_board = [&] {
     TfrogBoard board(board_options);
@@ -76,16 +82,17 @@ int run(const slamer::CommandLine& cli) {
       port.open();
       std::printf("%ld plugged %s\n", slamer::now_utime(), port.slave_name().c_str());
     }
-    if (port.is_open()) {
-      pollfd pfd{port.fd(), POLLIN, 0};
-      if (poll(&pfd, 1, 1) > 0 && (pfd.revents & POLLIN) != 0) {
+    pollfd fds[2] = {{port.is_open() ? port.fd() : -1, POLLIN, 0}, {source ? source->fd() : -1, POLLIN, 0}};
+    if (poll(fds, 2, 1) > 0) {
+      if ((fds[0].revents & POLLIN) != 0) {
         const ssize_t n = read(port.fd(), buffer, sizeof(buffer));
         if (n > 0) {
           board.receive(std::span<const uint8_t>(buffer, static_cast<std::size_t>(n)));
         }
       }
-    } else {
-      usleep(1000);
+      if ((fds[1].revents & POLLIN) != 0) {
+        source->pump();
+      }
     }
     // One board tick per elapsed millisecond.
     // When this process was descheduled, the lost time is skipped, not caught
@@ -99,7 +106,7 @@ int run(const slamer::CommandLine& cli) {
       if (streaming && streaming_since < 0) {
         streaming_since = board_ticks;
       }
-      std::array<double, 2> pushed{};
+      std::array<double, 2> pushed = follower.step();
       if (path && streaming_since >= 0 && board_ticks - streaming_since >= static_cast<int64_t>(path_delay * 1000)) {
         if (!path->done()) {
           if (path->distance() == 0.0) {
@@ -146,6 +153,8 @@ int main(int argc, char** argv) {
         cli.add_option("robot", "FILE", "YP-Spur .param file of the robot", "config/robots/icart-mini.param");
         cli.add_option("protocol", "YPP:C:A", "protocol version the board reports", "YPP:11:02");
         cli.add_option("path", "V,W,T;...", "wheels pushed along these (v, omega, seconds) segments");
+        cli.add_option("source-channel", "CHANNEL",
+                       "wheels turned as the wheel_encoders_t on CHANNEL say (e.g. slamer-sim's)");
         cli.add_option("path-delay", "S", "start the path S seconds after streaming starts", "0.5");
         cli.add_option("corrupt-every", "N", "damage every Nth odometry frame (0: never)", "0");
         cli.add_option("drop-every", "N", "drop every Nth odometry frame", "0");

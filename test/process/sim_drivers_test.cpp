@@ -1,0 +1,216 @@
+// End to end: the simulated robot through the real drivers. slamer-sim (live,
+// --speed 1, config/sim_drivers.yaml) publishes SIM_LIDAR and
+// SIM_WHEEL_ENCODERS; slamer-urg-sim and slamer-tfrog-sim turn them into SCIP
+// over loopback TCP and the T-frog stream on a pty; the real slamer-urg and
+// slamer-wheels (config/urg_sim.yaml, config/wheels_sim.yaml) publish LIDAR
+// and ODOMETRY. Checked: every simulated scan after the driver's start-up is on
+// LIDAR exactly once, with the same ranges (mm quantization, the same REP 117
+// classes) and |utime - simulated utime| within the clock model's accuracy
+// (p99 < 1 ms, every scan < 2 ms); the ODOMETRY track is SIM_ODOMETRY's
+// (same counts, same .param) up to the emulators' delay, and ends on it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "common/geometry/se2.hpp"
+#include "slamer/laser_scan_t.hpp"
+#include "slamer/odometry_t.hpp"
+#include "slamer/process_status_t.hpp"
+#include "test/support/driver_processes.hpp"
+#include "test/support/lcm_capture.hpp"
+
+namespace slamer {
+namespace {
+
+// small_room's first half: 3 m out, a half turn, 2 m back (about 13 s).
+std::string write_world() {
+  const std::string path = test::temp_path("sim_drivers_world") + ".yaml";
+  const std::string root = SLAMER_SOURCE_DIR;
+  std::ofstream(path) << "map: " << root << "/config/maps/small_room/map.yaml\n"
+                      << "robot: " << root << "/config/robots/icart_mini.yaml\n"
+                      << "start: [1.5, 3.0, 0.0]\n"
+                      << "path:\n"
+                      << "  - {go_to: [4.5, 3.0], speed: 0.5}\n"
+                      << "  - {turn_to: 3.14159}\n"
+                      << "  - {go_to: [2.5, 3.0], speed: 0.5}\n"
+                      << "truth:\n"
+                      << "  doors:\n"
+                      << "    - {near: [6.0, 3.0], state: open}\n";
+  return path;
+}
+
+// The REP 117 class of a range and, for finite ones, the value in whole mm.
+bool same_range(float driver, float sim) {
+  if (std::isnan(sim) || std::isnan(driver)) {
+    return std::isnan(sim) && std::isnan(driver);
+  }
+  if (std::isinf(sim) || std::isinf(driver)) {
+    return sim == driver;
+  }
+  return std::fabs(static_cast<double>(driver) - std::round(static_cast<double>(sim) * 1000.0) / 1000.0) < 1e-6;
+}
+
+double percentile(std::vector<double> values, double p) {
+  std::sort(values.begin(), values.end());
+  return values[std::min(values.size() - 1, static_cast<std::size_t>(p * static_cast<double>(values.size())))];
+}
+
+Pose2 pose_of(const odometry_t& o) {
+  return {o.x, o.y, o.theta};
+}
+
+// SIM_ODOMETRY at `utime`, interpolated; false outside the track.
+bool sim_pose_at(const std::vector<odometry_t>& track, int64_t utime, Pose2* pose) {
+  const auto it =
+      std::lower_bound(track.begin(), track.end(), utime, [](const odometry_t& o, int64_t t) { return o.utime < t; });
+  if (it == track.begin() || it == track.end()) {
+    return false;
+  }
+  const odometry_t& a = *(it - 1);
+  const odometry_t& b = *it;
+  *pose = interpolate(pose_of(a), pose_of(b),
+                      static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime));
+  return true;
+}
+
+TEST(SimThroughDrivers, LidarAndOdometryAreTheSimulatedOnes) {
+  const std::string url = test::unique_lcm_url(41);
+  test::LcmCapture bus(url);
+  std::vector<laser_scan_t> sim_scans, scans;
+  std::vector<odometry_t> sim_odometry, odometry;
+  std::vector<process_status_t> status;
+  bus.capture("SIM_LIDAR", &sim_scans);
+  bus.capture("LIDAR", &scans);
+  bus.capture("SIM_ODOMETRY", &sim_odometry);
+  bus.capture("ODOMETRY", &odometry);
+  bus.capture("PROCESS_STATUS", &status);
+
+  int port = 0;
+  auto urg_sim = test::start_urg_sim({"--source-channel", "SIM_LIDAR", "--lcm-url", url, "--drift-ppm", "50"}, &port);
+  const std::string link = test::temp_path("sim_drivers_tfrog");
+  auto tfrog_sim = test::start_tfrog_sim(link, {"--source-channel", "SIM_WHEEL_ENCODERS", "--lcm-url", url});
+  auto urg = test::start_urg(url, port, {}, "config/urg_sim.yaml");
+  auto wheels = test::start_wheels(url, link, "config/wheels_sim.yaml");
+  // Both drivers up: the board streams, the sensor answered (it has no scans to send yet).
+  ASSERT_TRUE(bus.pump_until(
+      [&] {
+        return odometry.size() >= 20 && std::any_of(status.begin(), status.end(), [](const process_status_t& s) {
+                 return s.process == "slamer-urg" && s.message.find("URM-40LC-EW") != std::string::npos;
+               });
+      },
+      10.0))
+      << urg->stderr_text() << wheels->stderr_text();
+
+  test::ChildProcess sim(test::binary_path("slamer-sim"), {"--world", write_world(), "--config",
+                                                           std::string(SLAMER_SOURCE_DIR) + "/config/sim_drivers.yaml",
+                                                           "--seed", "1", "--speed", "1", "--lcm-url", url});
+  ASSERT_TRUE(bus.pump_until([&] { return !sim.running(); }, 40.0)) << sim.stderr_text();
+  ASSERT_EQ(sim.wait(1.0), 0) << sim.stderr_text();
+  bus.pump_for(0.5);
+  ASSERT_GT(sim_scans.size(), 400u) << sim.stderr_text();
+  ASSERT_FALSE(scans.empty()) << urg->stderr_text() << urg_sim->stderr_text();
+
+  // Scans: every simulated one from 0.5 s after the driver's first on, exactly once.
+  const int64_t settled = scans.front().utime + 500000;
+  std::vector<double> offsets_us;
+  std::size_t next = 0, compared = 0, non_finite = 0;
+  int64_t first_compared = 0;
+  for (const laser_scan_t& s : sim_scans) {
+    if (s.utime < settled) {
+      continue;
+    }
+    while (next < scans.size() && scans[next].utime < s.utime - 12500) {
+      ++next;  // a driver scan before this simulated one that matched none: counted below
+    }
+    int matches = 0;
+    for (std::size_t j = next; j < scans.size() && scans[j].utime <= s.utime + 12500; ++j) {
+      ++matches;
+    }
+    ASSERT_EQ(matches, 1) << "simulated scan seq " << s.seq << " is on LIDAR " << matches << " times\n"
+                          << urg->stderr_text();
+    const laser_scan_t& d = scans[next];
+    first_compared = compared == 0 ? s.utime : first_compared;
+    offsets_us.push_back(static_cast<double>(std::llabs(d.utime - s.utime)));
+    ASSERT_EQ(d.nranges, s.nranges);
+    EXPECT_NEAR(d.angle_min, s.angle_min, 1e-9);
+    EXPECT_NEAR(d.angle_increment, s.angle_increment, 1e-12);
+    for (std::size_t i = 0; i < s.ranges.size(); ++i) {
+      ASSERT_TRUE(same_range(d.ranges[i], s.ranges[i]))
+          << "scan " << s.seq << " beam " << i << ": LIDAR " << d.ranges[i] << ", SIM_LIDAR " << s.ranges[i];
+      non_finite += std::isfinite(s.ranges[i]) ? 0 : 1;
+    }
+    ++compared;
+    ++next;
+  }
+  const std::size_t driver_scans =
+      static_cast<std::size_t>(std::count_if(scans.begin(), scans.end(), [&](const laser_scan_t& d) {
+        return d.utime >= first_compared - 12500 && d.utime <= sim_scans.back().utime + 12500;
+      }));
+  EXPECT_EQ(driver_scans, compared) << "LIDAR has scans that are no simulated one";
+  ASSERT_GT(compared, 400u);
+  EXPECT_GT(non_finite, 0u);  // the classes were compared too (dropouts, no return)
+  const double p50 = percentile(offsets_us, 0.5), p99 = percentile(offsets_us, 0.99);
+  const double worst = *std::max_element(offsets_us.begin(), offsets_us.end());
+  std::cout << "scans compared " << compared << ": |utime - sim utime| p50 " << p50 << " us, p99 " << p99 << " us, max "
+            << worst << " us\n";
+  EXPECT_LT(p99, 1000.0);
+  EXPECT_LT(worst, 2000.0);
+
+  // Odometry: the driver's track is the simulator's, delayed by the emulator
+  // (a ramp over each 10 ms sample) and the board's 5 ms frames.
+  ASSERT_GT(sim_odometry.size(), 1000u);
+  int best_lag_ms = -1;
+  double best_mean = INFINITY;
+  for (int lag_ms = 0; lag_ms <= 60; ++lag_ms) {
+    double sum = 0;
+    int n = 0;
+    for (const odometry_t& o : odometry) {
+      Pose2 p;
+      if (sim_pose_at(sim_odometry, o.utime - lag_ms * 1000, &p)) {
+        sum += std::hypot(o.x - p.x, o.y - p.y);
+        ++n;
+      }
+    }
+    if (n > 1000 && sum / n < best_mean) {
+      best_mean = sum / n;
+      best_lag_ms = lag_ms;
+    }
+  }
+  ASSERT_GE(best_lag_ms, 0);
+  // Each ODOMETRY pose against the simulated track within +-10 ms of the lagged
+  // time (the emulator's ramp and the 5 ms frames jitter the delay).
+  double max_position = 0, max_heading = 0;
+  for (const odometry_t& o : odometry) {
+    double position = INFINITY, heading = INFINITY;
+    for (int dt_ms = -10; dt_ms <= 10; ++dt_ms) {
+      Pose2 p;
+      if (sim_pose_at(sim_odometry, o.utime - (best_lag_ms + dt_ms) * 1000, &p)) {
+        position = std::min(position, std::hypot(o.x - p.x, o.y - p.y));
+        heading = std::min(heading, std::fabs(angle_diff(o.theta, p.theta)));
+      }
+    }
+    if (std::isfinite(position)) {
+      max_position = std::max(max_position, position);
+      max_heading = std::max(max_heading, heading);
+    }
+  }
+  const odometry_t& end = odometry.back();
+  const odometry_t& sim_end = sim_odometry.back();
+  const double end_position = std::hypot(end.x - sim_end.x, end.y - sim_end.y);
+  const double end_heading = std::fabs(angle_diff(end.theta, sim_end.theta));
+  std::cout << "odometry: lag " << best_lag_ms << " ms, mean " << best_mean * 1000 << " mm, max " << max_position * 1000
+            << " mm / " << max_heading * 180 / M_PI << " deg; at the end " << end_position * 1000 << " mm / "
+            << end_heading * 180 / M_PI << " deg after " << std::hypot(sim_end.x, sim_end.y) << " m\n";
+  EXPECT_LT(best_lag_ms, 40);
+  EXPECT_LT(max_position, 0.002);
+  EXPECT_LT(max_heading, 0.3 * M_PI / 180);
+  EXPECT_LT(end_position, 0.001);  // the same whole counts: encoder quantization only
+  EXPECT_LT(end_heading, 0.05 * M_PI / 180);
+}
+
+}  // namespace
+}  // namespace slamer
