@@ -254,5 +254,49 @@ TEST(UrgProcess, SerialPathOverAPty) {
   std::filesystem::remove(link);
 }
 
+// --source-log: a log's scans at their own pace, each once, with their ranges; the emulator exits after the last.
+TEST(UrgProcess, ScansFromALogAtTheirOwnPace) {
+  const std::string log_path = temp_path("urg_source") + ".lcm";
+  {
+    lcm::LogFile log(log_path, "w");
+    for (int k = 0; k < 60; ++k) {
+      laser_scan_t scan{};
+      scan.utime = 1'700'000'000'000'000 + k * 25000;
+      scan.frame = "laser";
+      scan.angle_min = -0.75 * std::numbers::pi;
+      scan.angle_increment = 2 * std::numbers::pi / 1440;
+      scan.range_min = 0.06f;
+      scan.range_max = 30.0f;
+      scan.scan_period = 0.025f;
+      scan.nranges = 1081;
+      scan.ranges.assign(1081, 1.0f + 0.01f * static_cast<float>(k));
+      scan.ranges[5] = INFINITY;
+      scan.nintensities = 0;
+      std::vector<uint8_t> bytes(static_cast<std::size_t>(scan.getEncodedSize()));
+      scan.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+      lcm::LogEvent event{k, scan.utime, "SIM_SCANS", static_cast<int32_t>(bytes.size()), bytes.data()};
+      ASSERT_EQ(log.writeEvent(&event), 0);
+    }
+  }
+  const std::string url = test::unique_lcm_url(9);
+  Bus bus(url);
+  int port = 0;
+  auto sim = start_sim({"--source-log", log_path, "--source-channel", "SIM_SCANS"}, &port);
+  auto driver = start_driver(url, port);
+  ASSERT_TRUE(bus.pump_until([&] { return !sim->running(); }, 15.0)) << sim->stderr_text();
+  EXPECT_NE(sim->stdout_text().find("the scan source has ended"), std::string::npos) << sim->stdout_text();
+  bus.pump_for(0.2);
+  ASSERT_EQ(bus.scans.size(), 60u) << driver->stderr_text();
+  for (std::size_t k = 0; k < bus.scans.size(); ++k) {
+    const laser_scan_t& s = bus.scans[k];
+    EXPECT_FLOAT_EQ(s.ranges[0], std::round((1.0f + 0.01f * static_cast<float>(k)) * 1000.0f) / 1000.0f) << k;
+    EXPECT_EQ(s.ranges[5], INFINITY);
+    if (k > 0) {
+      EXPECT_NEAR(static_cast<double>(s.utime - bus.scans[k - 1].utime), 25000.0, 1000.0) << k;
+    }
+  }
+  std::filesystem::remove(log_path);
+}
+
 }  // namespace
 }  // namespace slamer

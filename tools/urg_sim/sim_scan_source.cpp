@@ -42,7 +42,9 @@ bool sim_scan_from(const LaserScan& scan, const SimModel& model, int64_t receive
     text[0] = '\0';
   }
   if (text[0] != '\0') {
-    *error = text;
+    if (error != nullptr) {
+      *error = text;
+    }
     return false;
   }
   const SimErrorCodes codes = sim_error_codes(model);

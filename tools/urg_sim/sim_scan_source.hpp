@@ -31,7 +31,7 @@ struct SimErrorCodes {
 };
 SimErrorCodes sim_error_codes(const SimModel& model);
 
-// False with `error` (one line) if `scan` does not fit `model`.
+// False with `error` (one line; may be null) if `scan` does not fit `model`.
 bool sim_scan_from(const LaserScan& scan, const SimModel& model, int64_t received_us, SimScan* out, std::string* error);
 
 }  // namespace slamer::urg
