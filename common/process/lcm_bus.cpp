@@ -22,9 +22,6 @@ int64_t now_utime() {
       .count();
 }
 
-namespace {
-
-// LCM treats a channel as a regular expression; quote it so "A.B" is literal.
 std::string literal_pattern(const std::string& channel) {
   std::string pattern;
   for (const char c : channel) {
@@ -35,8 +32,6 @@ std::string literal_pattern(const std::string& channel) {
   }
   return pattern;
 }
-
-}  // namespace
 
 struct LcmBus::Context {
   LcmBus* bus;

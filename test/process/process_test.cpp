@@ -21,6 +21,7 @@
 #include "slamer/velocity_command_t.hpp"
 #include "slamer/wheel_encoders_t.hpp"
 #include "test/support/child_process.hpp"
+#include "test/support/lcm_capture.hpp"
 
 namespace slamer {
 namespace {
@@ -57,10 +58,10 @@ laser_scan_t make_scan(int64_t seq) {
 // The test's own end of the LCM bus: publishes raw bytes and collects decoded messages.
 class Bus {
  public:
-  explicit Bus(const std::string& url) : lcm_(url) { EXPECT_TRUE(lcm_.good()) << "cannot open " << url; }
+  explicit Bus(const std::string& url) : capture_(url) { EXPECT_TRUE(capture_.lcm().good()) << "cannot open " << url; }
 
   void publish_raw(const std::string& channel, const std::vector<uint8_t>& bytes) {
-    lcm_.publish(channel, bytes.data(), static_cast<unsigned int>(bytes.size()));
+    capture_.lcm().publish(channel, bytes.data(), static_cast<unsigned int>(bytes.size()));
   }
   template <class Msg>
   void publish(const std::string& channel, const Msg& msg) {
@@ -71,43 +72,18 @@ class Bus {
   std::vector<Msg>* collect(const std::string& channel) {
     auto store = std::make_shared<std::vector<Msg>>();
     stores_.push_back(store);
-    handlers_.push_back(
-        std::make_unique<std::function<void(const lcm::ReceiveBuffer*)>>([store](const lcm::ReceiveBuffer* buffer) {
-          Msg msg;
-          if (decode_message(buffer->data, buffer->data_size, &msg) == DecodeStatus::kOk) {
-            store->push_back(msg);
-          }
-        }));
-    lcm_.subscribeFunction(
-        channel,
-        +[](const lcm::ReceiveBuffer* buffer, const std::string&, std::function<void(const lcm::ReceiveBuffer*)>* f) {
-          (*f)(buffer);
-        },
-        handlers_.back().get());
+    capture_.capture(channel, store.get());
     return store.get();
   }
 
   // Handles messages until `done` is true or `timeout_s` passes; `tick` runs every 50 ms.
   bool pump_until(const std::function<bool()>& done, double timeout_s, const std::function<void()>& tick = {}) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    auto next_tick = std::chrono::steady_clock::now();
-    while (!done()) {
-      if (std::chrono::steady_clock::now() >= deadline) {
-        return false;
-      }
-      if (tick && std::chrono::steady_clock::now() >= next_tick) {
-        tick();
-        next_tick += std::chrono::milliseconds(50);
-      }
-      lcm_.handleTimeout(10);
-    }
-    return true;
+    return capture_.pump_until(done, timeout_s, tick);
   }
 
  private:
-  lcm::LCM lcm_;
-  std::vector<std::shared_ptr<void>> stores_;
-  std::vector<std::unique_ptr<std::function<void(const lcm::ReceiveBuffer*)>>> handlers_;
+  std::vector<std::shared_ptr<void>> stores_;  // before capture_: its handlers point into them
+  test::LcmCapture capture_;
 };
 
 TEST(Processes, TwoProcessesExchangeMessagesOverMulticast) {

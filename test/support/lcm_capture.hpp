@@ -34,12 +34,17 @@ class LcmCapture {
         handlers_.back().get());
   }
 
-  // Handles messages until `done` or the timeout; false on timeout.
-  bool pump_until(const std::function<bool()>& done, double timeout_s) {
+  // Handles messages until `done` or the timeout (false then); `every_50ms` runs every 50 ms.
+  bool pump_until(const std::function<bool()>& done, double timeout_s, const std::function<void()>& every_50ms = {}) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    auto next = std::chrono::steady_clock::now();
     while (!done()) {
       if (std::chrono::steady_clock::now() >= deadline) {
         return false;
+      }
+      if (every_50ms && std::chrono::steady_clock::now() >= next) {
+        every_50ms();
+        next += std::chrono::milliseconds(50);
       }
       if (lcm_.handleTimeout(5) > 0) {
         while (lcm_.handleTimeout(0) > 0) {  // drain: 200 Hz streams must not pile up behind us
@@ -48,9 +53,10 @@ class LcmCapture {
     }
     return true;
   }
-  void pump_for(double seconds) {
-    pump_until([] { return false; }, seconds);
+  void pump_for(double seconds, const std::function<void()>& every_50ms = {}) {
+    pump_until([] { return false; }, seconds, every_50ms);
   }
+  lcm::LCM& lcm() { return lcm_; }  // to publish
 
  private:
   using Handler = std::function<void(const lcm::ReceiveBuffer*)>;

@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <stdexcept>
-#include <string_view>
 
 #include "common/process/decode.hpp"
 #include "common/process/lcm_bus.hpp"
@@ -15,14 +14,7 @@ EncoderSource::EncoderSource(const std::string& lcm_url, const std::string& chan
   if (!lcm_.good()) {
     throw std::runtime_error("cannot open LCM" + (lcm_url.empty() ? std::string() : " URL '" + lcm_url + "'"));
   }
-  std::string pattern;  // LCM channels are regular expressions: match exactly this one
-  for (const char c : channel) {
-    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) {
-      pattern += '\\';
-    }
-    pattern += c;
-  }
-  lcm_.subscribeFunction(pattern, &EncoderSource::on_message, this);
+  lcm_.subscribeFunction(literal_pattern(channel), &EncoderSource::on_message, this);
   fd_ = lcm_.getFileno();
 }
 

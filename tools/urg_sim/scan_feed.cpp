@@ -2,10 +2,10 @@
 
 #include <cstdio>
 #include <stdexcept>
-#include <string_view>
 
 #include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
+#include "common/process/lcm_bus.hpp"
 #include "slamer/laser_scan_t.hpp"
 #include "tools/urg_sim/sim_scan_source.hpp"
 
@@ -40,14 +40,7 @@ LcmScanFeed::LcmScanFeed(const std::string& lcm_url, const std::string& channel)
   if (!lcm_.good()) {
     throw std::runtime_error("cannot open LCM" + (lcm_url.empty() ? std::string() : " URL '" + lcm_url + "'"));
   }
-  std::string pattern;  // LCM channels are regular expressions: match exactly this one
-  for (const char c : channel) {
-    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) {
-      pattern += '\\';
-    }
-    pattern += c;
-  }
-  lcm_.subscribeFunction(pattern, &LcmScanFeed::on_message, this);
+  lcm_.subscribeFunction(literal_pattern(channel), &LcmScanFeed::on_message, this);
   fd_ = lcm_.getFileno();
 }
 
