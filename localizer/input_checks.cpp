@@ -69,6 +69,12 @@ std::string scan_problem(const LaserScan& scan, const InputLimits& limits) {
   if (scan.ranges.size() < 3 || static_cast<int>(scan.ranges.size()) > limits.max_beams) {
     return std::to_string(scan.ranges.size()) + " beams (the sensor has " + std::to_string(limits.max_beams) + ")";
   }
+  // Not one measured range: nothing to weigh the particles with, and a scan
+  // stamped newer than a real one in flight would make that one stale.
+  if (std::none_of(scan.ranges.begin(), scan.ranges.end(),
+                   [&](float r) { return r >= scan.range_min && r <= scan.range_max; })) {
+    return "no range within [range_min, range_max] in " + std::to_string(scan.ranges.size()) + " beams";
+  }
   return "";
 }
 

@@ -62,7 +62,9 @@ class StreamTime {
   int agreeing_ = 0;
 };
 
-// Why a scan cannot be used, or "".
+// Why a scan cannot be used, or "": no time, non-finite or impossible
+// geometry, fewer than 3 beams or more than the sensor has, or not one
+// range within [range_min, range_max] (all NaN, inf, or 1e30).
 std::string scan_problem(const LaserScan& scan, const InputLimits& limits);
 
 // Why an odometry step from `from` (at from_utime) to `to` cannot be a real

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+
+#include "localizer/class_map_check.hpp"
 
 namespace slamer {
 namespace {
@@ -20,7 +23,7 @@ int64_t microseconds(double s) {
 }  // namespace
 
 LocalizerNode::LocalizerNode(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount)
-    : options_(options),
+    : options_((check_class_map(options, map), options)),  // before the map's fields are built
       filter_(map, options, lidar_mount),
       start_pose_(options.initial_pose),
       start_sigma_(options.initial_sigma) {
@@ -63,18 +66,56 @@ void LocalizerNode::on_odometry(int64_t utime, const Pose2& pose) {
   }
 }
 
-bool LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>& sigma) {
+namespace {
+bool valid_pose_and_sigma(const Pose2& pose, const std::vector<double>& sigma) {
   const auto finite = [](double v) { return std::isfinite(v); };
-  if (!finite(pose.x) || !finite(pose.y) || !finite(pose.theta) || sigma.size() != 3 ||
-      !std::all_of(sigma.begin(), sigma.end(), [](double v) { return std::isfinite(v) && v >= 0.0; })) {
+  return finite(pose.x) && finite(pose.y) && finite(pose.theta) && sigma.size() == 3 &&
+         std::all_of(sigma.begin(), sigma.end(), [](double v) { return std::isfinite(v) && v >= 0.0; });
+}
+}  // namespace
+
+bool LocalizerNode::on_initial_pose(const Pose2& pose, const std::vector<double>& sigma) {
+  if (!valid_pose_and_sigma(pose, sigma)) {
     ++counters_.invalid_initial_poses;
     return false;
   }
+  resume_.reset();
   start_pose_ = pose;
   start_sigma_ = sigma;
   filter_.initialize(pose, sigma);
   last_odometry_used_.reset();  // the next scan's odometry is the new reference
   return true;
+}
+
+bool LocalizerNode::resume(const Pose2& pose, const std::vector<double>& sigma, int64_t saved_utime) {
+  if (!valid_pose_and_sigma(pose, sigma)) {
+    ++counters_.invalid_initial_poses;
+    return false;
+  }
+  resume_ = Resume{pose, sigma, saved_utime};
+  return true;
+}
+
+void LocalizerNode::start_resumed(int64_t scan_utime) {
+  const Resume r = *resume_;
+  resume_.reset();
+  const double downtime = seconds(scan_utime - r.saved_utime);
+  // A second of clock disagreement is tolerated: the file is written from the scans' own times.
+  resumed_ = Resumed{downtime, downtime < -1.0 || downtime > options_.resume.max_downtime};
+  last_odometry_used_.reset();
+  if (resumed_->global) {
+    filter_.initialize_global();
+    return;
+  }
+  const double dt = std::max(downtime, 0.0);
+  const double moved = options_.resume.speed * dt;
+  const double turned = options_.resume.turn_rate * dt;
+  const std::vector<double> grown{std::hypot(r.sigma[0], moved), std::hypot(r.sigma[1], moved),
+                                  std::min(std::hypot(r.sigma[2], turned), std::numbers::pi)};
+  start_pose_ = r.pose;  // a restart of the stream starts here again, confirmed anew
+  start_sigma_ = grown;
+  filter_.initialize(r.pose, r.sigma, grown, options_.resume.moved_fraction);
+  filter_.require_confirmation();
 }
 
 void LocalizerNode::restart_odometry() {
@@ -83,6 +124,7 @@ void LocalizerNode::restart_odometry() {
 }
 
 void LocalizerNode::request_global_localization() {
+  resume_.reset();
   filter_.initialize_global();
 }
 
@@ -171,6 +213,9 @@ std::optional<Pose2> LocalizerNode::odometry_at(int64_t utime) const {
 
 UpdateResult LocalizerNode::process(const Pending& pending) {
   const int64_t utime = pending.scan.utime;
+  if (resume_) {
+    start_resumed(utime);
+  }
   constexpr double kNever = std::numeric_limits<double>::infinity();
   health_.odometry_age = odometry_.empty() ? kNever : std::max(0.0, seconds(utime - odometry_.back().first));
   health_.odometry_missing = health_.odometry_age > options_.inputs.odometry_timeout;

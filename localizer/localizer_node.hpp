@@ -47,6 +47,16 @@ class LocalizerNode {
   // The odometry jumped (a driver restart, a glitch): the step is not
   // integrated; the next odometry is the new reference.
   void restart_odometry();
+  // A pose read back after a restart (the pose file), from the scan at
+  // `saved_utime`. The robot may have moved while the process was down: at
+  // the first scan, resume.moved_fraction of the particles spread with a
+  // sigma grown by resume.speed and resume.turn_rate times the downtime (that
+  // scan's utime - saved_utime), the rest at the saved sigma (it stayed), and
+  // the filter says UNCERTAIN until the scans confirm it (ParticleFilter::
+  // require_confirmation); down longer than resume.max_downtime, or a saved
+  // time after the scan's (clocks that disagree): global localization.
+  // Returns false (and changes nothing) for a non-finite pose or sigma.
+  bool resume(const Pose2& pose, const std::vector<double>& sigma, int64_t saved_utime);
   bool on_map(double x, double y) const { return filter_.geometry().cell_at({x, y}).has_value(); }
   // Global localization on demand (an INITIAL_POSE whose cov[0] is negative):
   // particles uniform over the map's free space, relocalized from the scans.
@@ -62,6 +72,12 @@ class LocalizerNode {
   // (the arrival times' clock); INT64_MAX flushes every waiting scan.
   // Call until it returns nothing.
   std::optional<UpdateResult> poll(int64_t now_utime);
+  // What the last resume() found at its first scan (nullopt before).
+  struct Resumed {
+    double downtime = 0.0;  // [s]
+    bool global = false;    // too long, or a clock that disagrees: global localization
+  };
+  const std::optional<Resumed>& resumed() const { return resumed_; }
 
   const std::vector<Particle>& particles() const { return filter_.particles(); }
   const NodeCounters& counters() const { return counters_; }
@@ -82,6 +98,7 @@ class LocalizerNode {
   std::optional<Pose2> odometry_at(int64_t utime) const;
   bool objects_missing(int64_t scan_utime) const;
   void reset();
+  void start_resumed(int64_t scan_utime);
 
   LocalizerOptions options_;
   ParticleFilter filter_;
@@ -96,6 +113,13 @@ class LocalizerNode {
   std::optional<int64_t> first_scan_utime_;
   std::optional<int64_t> last_scan_arrival_;
   std::deque<Pending> pending_;
+  struct Resume {
+    Pose2 pose;
+    std::vector<double> sigma;
+    int64_t saved_utime = 0;
+  };
+  std::optional<Resume> resume_;  // until the first scan
+  std::optional<Resumed> resumed_;
   InputHealth health_;
   NodeCounters counters_;
 };

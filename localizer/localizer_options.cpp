@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/robot/robot_options.hpp"
+#include "localizer/class_map_check.hpp"
 
 namespace slamer {
 
@@ -61,6 +62,10 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
   reader.read("object_weight", &o->object_weight, in_range(0.0, 10.0));
   reader.read("object_samples", &o->object_samples, in_range(1, 50));
   reader.read("min_probability", &o->min_probability, in_range(1e-12, 0.1));
+  reader.read("recognition_classes", &o->recognition_classes);
+  if (o->recognition_classes.empty()) {
+    reader.fail("recognition_classes", "the list is empty");
+  }
   if (reader.has("class_map")) {
     const ConfigReader classes = reader.section("class_map");
     o->class_map.clear();
@@ -68,6 +73,15 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
       std::string map_class;
       classes.read(name, &map_class);
       o->class_map[name] = map_class;
+    }
+  }
+  // Every entry names a class the recognizer emits (the default table too, against a configured list).
+  for (const auto& entry : o->class_map) {
+    if (const std::string problem = recognition_class_problem(*o, entry.first); !problem.empty()) {
+      if (reader.section("class_map").has(entry.first)) {
+        reader.section("class_map").fail(entry.first, problem);
+      }
+      reader.fail("recognition_classes", "class_map's " + problem);
     }
   }
 }
@@ -89,6 +103,18 @@ void read_options(const ConfigReader& reader, StatusOptions* o) {
 void read_options(const ConfigReader& reader, RecoveryOptions* o) {
   reader.read("candidates", &o->candidates, in_range(0, 1'000'000));
   reader.read("fraction", &o->fraction, probability());
+}
+
+void read_options(const ConfigReader& reader, ResumeOptions* o) {
+  reader.read("speed", &o->speed, non_negative());
+  reader.read("turn_rate", &o->turn_rate, non_negative());
+  reader.read("moved_fraction", &o->moved_fraction, probability());
+  reader.read("max_downtime", &o->max_downtime, non_negative());
+  reader.read("confirm_scans", &o->confirm_scans, in_range(1, 100000));
+  reader.read("confirm_within", &o->confirm_within, in_range(1, 100000));
+  if (o->confirm_within < o->confirm_scans) {
+    reader.fail("confirm_within", "must be at least confirm_scans");
+  }
 }
 
 void read_options(const ConfigReader& reader, InputOptions* o) {
@@ -115,6 +141,7 @@ void read_options(const ConfigReader& reader, LocalizerOptions* o) {
   read_options(reader.section("slamer"), &o->slamer);
   read_options(reader.section("status"), &o->status);
   read_options(reader.section("recovery"), &o->recovery);
+  read_options(reader.section("resume"), &o->resume);
   read_options(reader.section("inputs"), &o->inputs);
 }
 

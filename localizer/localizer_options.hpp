@@ -9,6 +9,7 @@
 
 #include "common/geometry/se2.hpp"
 #include "common/map/likelihood_field.hpp"
+#include "common/semantic/objects.hpp"
 
 namespace slamer {
 
@@ -59,7 +60,12 @@ struct SlamerOptions {
   double object_weight = 5.0;     // exponent on each object's term (tuned on paper_indoor)
   int object_samples = 3;         // points along an object for its representative distance
   double min_probability = 1e-3;  // recognizer probabilities are floored before log
+  // The classes the recognizer emits (its config's `classes`, in LINE_OBJECTS).
+  std::vector<std::string> recognition_classes = paper_recognition_classes();
   // Recognition class -> the map class whose cells it lies on ("" = free space).
+  // Every key must be in recognition_classes (checked when the options are read)
+  // and every value a class the map declares (class_map_check.hpp, when the
+  // localizer is built on its map).
   std::map<std::string, std::string> class_map{{"open_door", "door"},
                                                {"closed_door", "door"},
                                                {"open_glass_door", "glass_door"},
@@ -93,6 +99,19 @@ struct RecoveryOptions {
   bool operator==(const RecoveryOptions&) const = default;
 };
 
+// Resuming from the pose file after a restart (LocalizerNode::resume): the
+// robot may have moved while the process was down.
+struct ResumeOptions {
+  double speed = 0.5;      // [m/s] the saved position's sigma grows by this x the downtime
+  double turn_rate = 0.5;  // [rad/s] and its heading's (at most pi)
+  double moved_fraction =
+      0.5;  // of the particles so spread; the rest at the saved sigma (most restarts are on the spot)
+  double max_downtime = 600.0;  // [s] down longer, or saved after the first scan: global localization
+  int confirm_scans = 10;       // scans in a row that fit the map there before the status may say OK
+  int confirm_within = 80;      // not confirmed within this many scans: global localization takes over
+  bool operator==(const ResumeOptions&) const = default;
+};
+
 // Input streams (LocalizerNode).
 struct InputOptions {
   double scan_timeout = 2.0;      // [s] no scan for this long: no pose, PROCESS_STATUS says so
@@ -115,6 +134,7 @@ struct LocalizerOptions {
   SlamerOptions slamer;
   StatusOptions status;
   RecoveryOptions recovery;
+  ResumeOptions resume;
   InputOptions inputs;
 };
 void read_options(const ConfigReader& reader, LocalizerOptions* options);

@@ -40,7 +40,7 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
   const LocalizerChannels& ch = config_.channels;
   std::string note;
   if (const std::optional<SavedPose> saved = pose_keeper_.load(&note)) {
-    node_.on_initial_pose(saved->pose, saved->sigma);
+    node_.resume(saved->pose, saved->sigma, saved->utime);
   }
   if (!note.empty()) {
     bus_.log_info(note);
@@ -236,6 +236,14 @@ void LocalizerProcess::publish(const UpdateResult& result) {
     last_particles_utime_ = utime;
   }
   ++scans_published_;
+  if (!resume_reported_ && node_.resumed()) {
+    resume_reported_ = true;
+    char text[160];
+    std::snprintf(text, sizeof text, "down for %.1f s since the saved pose: %s until the scans confirm it",
+                  node_.resumed()->downtime,
+                  node_.resumed()->global ? "global localization" : "its sigma grown by that time, UNCERTAIN");
+    bus_.log_info(text);
+  }
   const auto [state, message] = process_state(result.estimate.status, node_.health(), config_.channels);
   bus_.set_state(state, message);
   if (result.estimate.status == LocalizerStatus::kOk) {

@@ -7,8 +7,9 @@
 //   every input checked first (input_checks.hpp): what is refused is a drop
 //   of its channel, with its reason in the log at most once a second; stale
 //   input is a drop too (the node's counters, read when the status goes out);
-//   with a pose file: resume from it at the start, save it periodically and
-//   at the end.
+//   with a pose file: resume from it at the start (UNCERTAIN, its sigma grown
+//   by the downtime, until the scans confirm it: LocalizerNode::resume), save
+//   it periodically and at the end.
 #pragma once
 
 #include <memory>
@@ -66,6 +67,7 @@ class LocalizerProcess {
   std::vector<std::pair<int64_t, Pose2>> held_odometry_;  // the same for odometry
   int64_t last_particles_utime_;
   int64_t scans_published_ = 0;
+  bool resume_reported_ = false;
 };
 
 }  // namespace slamer

@@ -74,13 +74,20 @@ std::size_t ParticleFilter::map_memory_bytes() const {
 }
 
 void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& sigma) {
+  initialize(mean, sigma, sigma, 0.0);
+}
+
+void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& sigma,
+                                const std::vector<double>& wide_sigma, double wide_fraction) {
   std::normal_distribution<double> standard(0.0, 1.0);
   particles_.assign(static_cast<std::size_t>(options_.particles), {});
   const double log_uniform = -std::log(static_cast<double>(options_.particles));
-  for (Particle& p : particles_) {
-    p.pose = {mean.x + sigma[0] * standard(rng_), mean.y + sigma[1] * standard(rng_),
-              wrap_angle(mean.theta + sigma[2] * standard(rng_))};
-    p.log_weight = log_uniform;
+  const auto tight = static_cast<std::size_t>(std::lround((1.0 - wide_fraction) * options_.particles));
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const std::vector<double>& s = i < tight ? sigma : wide_sigma;
+    particles_[i].pose = {mean.x + s[0] * standard(rng_), mean.y + s[1] * standard(rng_),
+                          wrap_angle(mean.theta + s[2] * standard(rng_))};
+    particles_[i].log_weight = log_uniform;
   }
   low_likelihood_scans_ = 0;
   updated_ = false;
@@ -89,6 +96,7 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   low_fit_scans_ = 0;
   lost_ = false;
   global_ = false;
+  confirm_scans_seen_ = -1;
   noise_gain_ = 1.0;
   increment_.reset();
   last_heading_.reset();  // the learned correction stays: it belongs to the robot, not the pose

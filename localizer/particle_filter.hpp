@@ -68,9 +68,17 @@ class ParticleFilter {
   ParticleFilter(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount);
 
   void initialize(const Pose2& mean, const std::vector<double>& sigma);
+  // A mixture: `wide_fraction` of the particles from `wide_sigma`, the rest from `sigma`.
+  void initialize(const Pose2& mean, const std::vector<double>& sigma, const std::vector<double>& wide_sigma,
+                  double wide_fraction);
   // Global localization: particles uniform over the map's free space, and
   // global proposals every scan until the scan fits (status UNCERTAIN until then).
   void initialize_global();
+  // After initialize(): UNCERTAIN until `resume.confirm_scans` scans in a row
+  // fit the map with the particles together; not confirmed within
+  // `resume.confirm_within` scans, global localization takes over. For a pose
+  // that is a guess (read back after a restart), not one given by hand.
+  void require_confirmation();
   bool initialized() const { return !particles_.empty(); }
   // Moves every particle by the odometry increment from `odom_from` to `odom_to`.
   void predict(const Pose2& odom_from, const Pose2& odom_to);
@@ -126,6 +134,9 @@ class ParticleFilter {
   int low_fit_scans_ = 0;
   bool lost_ = false;
   bool global_ = false;  // global localization under way
+  // require_confirmation(): scans since, and fitting scans in a row (-1: not required).
+  int confirm_scans_seen_ = -1;
+  int confirmed_in_row_ = 0;
   double noise_gain_ = 1.0;
   OdometryCorrection correction_;
   std::optional<OdometryIncrement> increment_;  // odometry since the last update (raw), for the correction

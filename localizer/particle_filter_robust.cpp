@@ -27,6 +27,11 @@ void ParticleFilter::initialize_global() {
   noise_gain_ = options_.motion.noise_gain_max;
 }
 
+void ParticleFilter::require_confirmation() {
+  confirm_scans_seen_ = 0;
+  confirmed_in_row_ = 0;
+}
+
 LocalizerStatus ParticleFilter::status(const PoseEstimate& e) const {
   if (!updated_) {
     return LocalizerStatus::kInitializing;
@@ -37,7 +42,7 @@ LocalizerStatus ParticleFilter::status(const PoseEstimate& e) const {
   // The scan does not fit the map where the estimate puts it; or spread
   // particles, or a posterior resting on a handful of them (e.g. right after a
   // wide initialization: tight but not yet to be trusted).
-  if (global_ || fit_smoothed_ < options_.status.fit_uncertain ||
+  if (global_ || confirm_scans_seen_ >= 0 || fit_smoothed_ < options_.status.fit_uncertain ||
       std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.status.uncertain_position_sigma ||
       e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
     return LocalizerStatus::kUncertain;
@@ -58,9 +63,24 @@ void ParticleFilter::update_fit(double fit, const PoseEstimate& e) {
   if (fits) {
     lost_ = false;
   }
-  if (global_ && fits &&
-      std::sqrt(std::max(e.covariance[0], e.covariance[4])) <= options_.status.uncertain_position_sigma) {
+  const bool together =
+      std::sqrt(std::max(e.covariance[0], e.covariance[4])) <= options_.status.uncertain_position_sigma;
+  if (global_ && fits && together) {
     global_ = false;
+  }
+  if (confirm_scans_seen_ >= 0) {
+    ++confirm_scans_seen_;
+    confirmed_in_row_ = fits && together ? confirmed_in_row_ + 1 : 0;
+    if (confirmed_in_row_ >= options_.resume.confirm_scans) {
+      confirm_scans_seen_ = -1;  // the scans say the guess was right
+    } else if (confirm_scans_seen_ >= options_.resume.confirm_within || lost_) {
+      // The guess was wrong: search the whole map, keeping the cloud as the
+      // first hypothesis (proposals replace its least likely particles).
+      confirm_scans_seen_ = -1;
+      global_ = true;
+      noise_gain_ = options_.motion.noise_gain_max;
+      return;
+    }
   }
   // Motion noise from how well the prediction explained this scan.
   const double deficit =

@@ -51,8 +51,7 @@ struct RecognizerOptions {
   double min_pass_fraction = 0.8;  // of the beams between the two end points
   int min_pass_beams = 3;
   // Classes and the rules that give objects their probabilities.
-  std::vector<std::string> classes{"open_door", "closed_door",   "open_glass_door", "closed_glass_door",
-                                   "fence",     "no_entry_line", "free_space",      "others"};
+  std::vector<std::string> classes = paper_recognition_classes();
   double floor = 0.01;  // probability of classes a rule does not list, before normalizing
   std::vector<ClassRule> rules{
       {LineKind::kPhysical, 0.7, 1.0, 0.0, 1e9, {{"others", 0.6}, {"closed_door", 0.3}}},

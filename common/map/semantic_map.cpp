@@ -15,6 +15,8 @@ namespace {
 
 constexpr std::array<uint8_t, 3> kIsmUnknown{205, 205, 205};
 constexpr std::array<uint8_t, 3> kIsmFree{254, 254, 254};
+constexpr std::string_view kIsmNoEntry = "do_not_enter_line";  // ism.yaml's name for...
+constexpr std::string_view kNoEntry = "no_entry_line";         // ...this project's class
 
 // For a binary PGM/PPM (P5/P6): what is wrong with its header or size, or ""
 // (also for other formats, which OpenCV checks).
@@ -243,8 +245,12 @@ SemanticMap load_ism(const ConfigReader& reader) {
   reader.read("image", &image);
   reader.require("objects");
   reader.read("objects", &objects);
+  if (std::find(objects.begin(), objects.end(), kIsmNoEntry) != objects.end() &&
+      std::find(objects.begin(), objects.end(), kNoEntry) != objects.end()) {
+    reader.fail("objects", "lists both do_not_enter_line and no_entry_line, which are one class here");
+  }
   for (const std::string& name : objects) {
-    map.classes.push_back({name, read_color(reader, name + "_color")});
+    map.classes.push_back({name == kIsmNoEntry ? std::string(kNoEntry) : name, read_color(reader, name + "_color")});
   }
   check_classes(reader, "objects", map.classes);
   reader.check_all_keys_used();

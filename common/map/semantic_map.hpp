@@ -8,7 +8,11 @@
 //  * the published SLAMER implementation's ism.yaml: image (the colour
 //    layer), ogm_info_yaml (a map_server YAML beside it), objects: [names],
 //    and <name>_color: [R, G, B] per object; (205,205,205) is unknown and
-//    (254,254,254) free space.
+//    (254,254,254) free space. Its `do_not_enter_line` is this project's
+//    `no_entry_line` and loads under that name (its colour is still read from
+//    `do_not_enter_line_color`), so the localizer's class_map and the
+//    evaluation see one name whichever format the map came in; a file
+//    listing both is an error.
 //
 // Occupied cells with no class colour get `occupied_class` (default "others"
 // when the table has it), so walls are a class like any other. Colours in

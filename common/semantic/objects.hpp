@@ -32,4 +32,8 @@ struct LineObjectSet {
 // Index of the largest probability, -1 for an empty list.
 int most_likely(const std::vector<float>& probs);
 
+// The recognition classes of the paper's indoor case (Sec. VI-B): what the
+// recognizer emits by default and what the localizer's class_map expects.
+std::vector<std::string> paper_recognition_classes();
+
 }  // namespace slamer

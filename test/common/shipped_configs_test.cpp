@@ -13,9 +13,11 @@
 #include "common/robot/robot_options.hpp"
 #include "drivers/urg/urg_options.hpp"
 #include "drivers/wheels/wheels_options.hpp"
+#include "localizer/class_map_check.hpp"
 #include "localizer/localizer_config.hpp"
 #include "recognizer/recognizer_config.hpp"
 #include "test/support/child_process.hpp"
+#include "tools/annotate/object_list.hpp"
 #include "tools/eval/eval_config.hpp"
 #include "tools/sim/floor_plan.hpp"
 #include "tools/sim/sim_config.hpp"
@@ -101,6 +103,13 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
       {"maps/paper_indoor/plan.yaml", [](const std::string& path) { load_options<FloorPlan>(path); }},
       {"maps/small_room/map.yaml", load_map},
       {"maps/paper_indoor/map.yaml", load_map},
+      {"maps/examples/small_room_slam.yaml", load_map},
+      {"maps/examples/objects_example.yaml",
+       [](const std::string& path) {
+         const SemanticMap map =
+             load_semantic_map((std::filesystem::path(path).parent_path() / "small_room_slam.yaml").string());
+         EXPECT_GT(load_object_list(path, map).objects.size(), 0u);
+       }},
   };
   return table;
 }
@@ -145,7 +154,18 @@ TEST(ShippedConfigs, LocalizerDefaultsAreTheShippedOnes) {
   EXPECT_TRUE(shipped.slamer == defaults.slamer) << "slamer:";
   EXPECT_TRUE(shipped.status == defaults.status) << "status:";
   EXPECT_TRUE(shipped.recovery == defaults.recovery) << "recovery:";
+  EXPECT_TRUE(shipped.resume == defaults.resume) << "resume:";
   EXPECT_TRUE(shipped.inputs == defaults.inputs) << "inputs:";
+}
+
+// The localizer expects the classes the shipped recognizer emits, and its
+// class_map fits the shipped map (the check slamer-localizer runs at start-up).
+TEST(ShippedConfigs, LocalizerClassesAreTheRecognizersAndTheMaps) {
+  const std::string dir = std::string(SLAMER_SOURCE_DIR) + "/config/";
+  const auto localizer = load_options<LocalizerProcessConfig>(dir + "localizer.yaml");
+  const auto recognizer = load_options<RecognizerProcessConfig>(dir + "recognizer.yaml");
+  EXPECT_EQ(localizer.localizer.slamer.recognition_classes, recognizer.recognizer.classes);
+  EXPECT_EQ(class_map_problem(localizer.localizer, load_semantic_map(localizer.map)), "");
 }
 
 TEST(ShippedConfigs, BundledMapsMatchTheirPlans) {

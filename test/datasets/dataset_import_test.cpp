@@ -41,7 +41,8 @@ SyntheticLog write_synthetic_log(bool frozen_clock) {
   for (int k = 0; k < 50; ++k) {
     log.reference.push_back(ref);
     log.raw.push_back(raw);
-    const double t = frozen_clock ? 1.13486e9 : 10.0 + 0.25 * k;
+    // csail's clock: 6 printed digits, one value for most scans, then a step of 10^4 s.
+    const double t = frozen_clock ? (k < 40 ? 1.13486e9 : 1.13487e9) : 10.0 + 0.25 * k;
     out << "FLASER 3 1 2 3 " << pose_text(ref) << " " << pose_text(ref) << " " << t << " synth " << t << "\n";
     out << "ODOM " << pose_text(ref) << " 0 0 0 0 synth 0\n";
     const Pose2 step{0.3 + noise(rng), noise(rng), 0.1 + noise(rng)};
@@ -79,13 +80,14 @@ TEST(DatasetImport, RebuildsTheHiddenRawOdometryExactly) {
 }
 
 TEST(DatasetImport, FrozenLogClockGetsStrictlyIncreasingUtimes) {
-  const SyntheticLog truth = write_synthetic_log(true);  // every scan at 1.13486e9, as csail
+  const SyntheticLog truth = write_synthetic_log(true);  // scans at 1.13486e9, then 1.13487e9, as csail
   const ImportedLog log = import_dataset(truth.path, {});
   ASSERT_EQ(log.scans.size(), truth.reference.size());
   EXPECT_EQ(log.retimed, static_cast<int64_t>(truth.reference.size()) - 1);
   for (std::size_t k = 1; k < log.scans.size(); ++k) {
-    EXPECT_EQ(log.scans[k].utime - log.scans[k - 1].utime, 100'000);  // the nominal 100 ms
-    EXPECT_EQ(log.scans[k].sensor_utime, 1'134'860'000'000'000);      // the log's own time kept
+    // The nominal 100 ms, across the printed clock's step too (not a gap of 10^4 s).
+    EXPECT_EQ(log.scans[k].utime - log.scans[k - 1].utime, 100'000) << k;
+    EXPECT_EQ(log.scans[k].sensor_utime, k < 40 ? 1'134'860'000'000'000 : 1'134'870'000'000'000);  // the log's own
   }
   std::filesystem::remove(truth.path);
 }

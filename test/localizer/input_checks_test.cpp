@@ -41,9 +41,14 @@ TEST(InputChecks, ScansWithImpossibleGeometryAreRefused) {
   scan = good_scan();
   scan.utime = 0;
   EXPECT_EQ(scan_problem(scan, limits), "utime 0 is no time");
-  // All ranges NaN or huge is a scan that sees nothing, not an impossible one: the beams model handles it.
-  scan = good_scan();
-  scan.ranges.assign(1000, 1e30f);
+  // Not one measured range (all NaN, +inf or 1e30): nothing to use, and refused before it can
+  // make the real scan in flight stale (fault probing: 12 real scans lost that way).
+  for (const float r : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 1e30f}) {
+    scan = good_scan();
+    scan.ranges.assign(1000, r);
+    EXPECT_EQ(scan_problem(scan, limits), "no range within [range_min, range_max] in 1000 beams") << r;
+  }
+  scan.ranges[500] = 12.0f;  // one is enough
   EXPECT_EQ(scan_problem(scan, limits), "");
 }
 

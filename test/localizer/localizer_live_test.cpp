@@ -193,7 +193,12 @@ TEST(SlamerLocalizerLive, InitialPoseFaultsAndResumingFromTheSavedPose) {
     bus.drive(w, truth, 1.5);
     ASSERT_FALSE(bus.poses.empty()) << localizer.stderr_text();
     EXPECT_LT(distance(bus.poses.front(), truth), 0.15) << "did not resume from the saved pose";
+    EXPECT_NE(bus.poses.front().status, pose_estimate_t::OK) << "a pose read back is not yet evidence";
     EXPECT_LT(distance(bus.poses.back(), truth), 0.05);
+    EXPECT_EQ(bus.poses.back().status, pose_estimate_t::OK) << "the scans confirm the resumed pose";
+    EXPECT_NE(localizer.stderr_text().find("since the saved pose: its sigma grown by that time, UNCERTAIN"),
+              std::string::npos)
+        << localizer.stderr_text();
     EXPECT_NE(localizer.stderr_text().find("resuming from the pose saved in " + pose_file), std::string::npos)
         << localizer.stderr_text();
     localizer.signal(SIGKILL);

@@ -189,6 +189,34 @@ TEST(SlamerLocalizer, BadArgumentsAndMissingMapAreOneLine) {
   EXPECT_EQ(err, "slamer-localizer: config error: /nonexistent/map.yaml: cannot open: No such file or directory\n");
 }
 
+// The issue 11 case: the map calls no_entry_line something else, so class_map's
+// entry would get no map prior; the localizer stops at start-up, naming the key.
+TEST(SlamerLocalizer, AClassMapEntryTheMapLacksStopsItWithOneLine) {
+  const std::string dir = kSource + "/config/maps/small_room/";
+  const std::string map = kBinary + "/loc_renamed_map.yaml";
+  std::ofstream(map) << "image: " << dir << "map.pgm\nresolution: 0.05\norigin: [-0.5, -0.5, 0.0]\n"
+                     << "semantic:\n  image: " << dir << "semantic.png\n  classes:\n"
+                     << "    - {name: door, color: [255, 0, 255]}\n    - {name: glass_door, color: [0, 255, 255]}\n"
+                     << "    - {name: fence, color: [255, 128, 0]}\n    - {name: no_go, color: [255, 0, 0]}\n"
+                     << "    - {name: others, color: [0, 0, 0]}\n";
+  std::string err;
+  EXPECT_EQ(run("slamer-localizer",
+                {"--config", kSource + "/config/localizer.yaml", "--map", map, "--replay", "x", "--out", "y"}, &err),
+            1);
+  EXPECT_EQ(err,
+            "slamer-localizer: config error: key 'localizer.slamer.class_map.no_entry_line': 'no_entry_line' is not "
+            "a class of the map (it has: door, glass_door, fence, no_go, others); name one of them, or '' for free "
+            "space\n");
+  // LFM uses no classes: the same map and config start (and stop at the missing log).
+  EXPECT_EQ(run("slamer-localizer",
+                {"--config", kSource + "/config/localizer.yaml", "--map", map, "--mode", "lfm", "--replay",
+                 kBinary + "/loc_no_such.lcm", "--out", kBinary + "/loc_x.lcm"},
+                &err),
+            1);
+  EXPECT_EQ(err.find("class_map"), std::string::npos) << err;
+  std::remove(map.c_str());
+}
+
 TEST(SlamerLocalizer, ReplayOfWhatIsNotALogExitsOneWithOneLine) {
   const std::string map = kSource + "/config/maps/small_room/map.yaml";
   const std::string empty = kBinary + "/loc_empty.lcm";

@@ -4,9 +4,12 @@
 // simulated with realistic odometry errors and the filter run in the loop.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <limits>
+#include <optional>
 
 #include "localizer/localizer_node.hpp"
 #include "localizer/motion_model.hpp"
@@ -74,12 +77,18 @@ class RobustLoop : public SimulatorSink {
     first_utime_ = first_utime_ < 0 ? s.utime : first_utime_;
     node_.on_odometry(s.utime, odometry_fault(static_cast<double>(s.utime - first_utime()) * 1e-6, s.pose));
   }
-  void on_ground_truth(const GroundTruthSample& s) override { truth_ = s.pose; }
+  void on_ground_truth(const GroundTruthSample& s) override {
+    truth_ = s.pose;
+    truth_utime_ = s.utime;
+  }
+  const Pose2& truth() const { return truth_; }
+  int64_t truth_utime() const { return truth_utime_; }
 
  private:
   int64_t first_utime() const { return first_utime_ < 0 ? 0 : first_utime_; }
   LocalizerNode node_;
   Pose2 truth_;
+  int64_t truth_utime_ = 0;
   int64_t first_utime_ = -1;
 };
 
@@ -247,6 +256,67 @@ TEST(Robustness, GlobalLocalizationOnDemandFindsTheRobot) {
   ASSERT_GT(first_ok, 3.0) << "never found the robot";
   EXPECT_LT(first_ok - 3.0, 10.0);
   EXPECT_LT(loop.steps.back().error, 0.1);
+}
+
+// The process is killed at `saved_at` s (its pose file holds the pose of
+// then, or `saved` if given) and restarted at `restart_at` s while the robot
+// drove on: a new node resumes from the file.
+std::vector<Step> resume_run(const SmallWorld& w, double saved_at, double restart_at,
+                             std::optional<Pose2> saved = std::nullopt) {
+  const LocalizerOptions options = starting_at(w);
+  RobustLoop loop(w, options);
+  std::optional<std::pair<Pose2, int64_t>> file;
+  loop.at_scan = [&](double t, LocalizerNode& node) {
+    if (!file && t >= saved_at) {
+      file = {saved.value_or(loop.truth()), loop.truth_utime()};
+    }
+    if (file && std::abs(t - restart_at) < 0.0125) {
+      node = LocalizerNode(w.map, options, w.robot.lidar.mount);
+      EXPECT_TRUE(node.resume(file->first, {0.01, 0.01, 0.005}, file->second));
+    }
+  };
+  drive(w, realistic_odometry(), &loop);
+  return loop.steps;
+}
+
+TEST(Robustness, AResumedPoseIsUncertainUntilTheScansConfirmIt) {
+  const SmallWorld w;
+  // Killed at 5 s, back at 8 s: the robot drove on in between.
+  const std::vector<Step> steps = resume_run(w, 5.0, 8.0);
+  const auto first = std::find_if(steps.begin(), steps.end(), [](const Step& s) { return s.time >= 8.0; });
+  ASSERT_NE(first, steps.end());
+  EXPECT_GT(first->error, 0.5) << "the robot should have moved while the localizer was down";
+  EXPECT_NE(first->status, LocalizerStatus::kOk) << "a pose from before the restart is not yet evidence";
+  double ok_at = -1.0;
+  for (auto s = first; s != steps.end(); ++s) {
+    if (s->status == LocalizerStatus::kOk) {
+      ok_at = ok_at < 0.0 ? s->time : ok_at;
+      EXPECT_LT(s->error, 0.2) << "OK at " << s->time << " s while " << s->error << " m off";
+    }
+  }
+  ASSERT_GT(ok_at, 8.0) << "never confirmed";
+  std::cout << "resumed " << first->error << " m off, UNCERTAIN, OK after " << ok_at - 8.0 << " s\n";
+  EXPECT_LT(ok_at - 8.0, 3.0);
+  EXPECT_LT(steps.back().error, 0.1);
+}
+
+TEST(Robustness, AResumedPoseTheScansDoNotConfirmHandsOverToGlobalLocalization) {
+  const SmallWorld w;
+  // The file says the robot is somewhere it was not (carried away while the
+  // localizer was down for 1 s): the grown cloud does not cover the truth.
+  const std::vector<Step> steps = resume_run(w, 4.0, 5.0, Pose2{5.0, 5.0, 2.0});
+  double ok_at = -1.0;
+  for (const Step& s : steps) {
+    if (s.time >= 5.0 && s.status == LocalizerStatus::kOk) {
+      ok_at = ok_at < 0.0 ? s.time : ok_at;
+      EXPECT_LT(s.error, 0.2) << "OK at " << s.time << " s while " << s.error << " m off";
+    }
+  }
+  ASSERT_GT(ok_at, 5.0) << "never found the robot";
+  std::cout << "wrong resumed pose: found by global localization, OK after " << ok_at - 5.0 << " s\n";
+  EXPECT_LT(ok_at - 5.0, 12.0);
+  EXPECT_LT(steps.back().error, 0.1);
+  EXPECT_EQ(steps.back().status, LocalizerStatus::kOk);
 }
 
 TEST(ScanFit, FractionOfBeamsOnTheMapsObstacles) {

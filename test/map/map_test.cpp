@@ -278,10 +278,20 @@ TEST(SemanticMap, IsmYamlFormat) {
   EXPECT_DOUBLE_EQ(map.geometry.resolution, 0.05);
   EXPECT_DOUBLE_EQ(map.geometry.origin.x, 1.0);
   ASSERT_EQ(map.classes.size(), 4u);
-  EXPECT_EQ(map.classes[2].name, "do_not_enter_line");
-  EXPECT_EQ(map.labels[map.geometry.index(3, 2)], map.class_index("do_not_enter_line"));
+  // ism.yaml's do_not_enter_line is the project's no_entry_line, its colour read from its own key.
+  EXPECT_EQ(map.classes[2].name, "no_entry_line");
+  EXPECT_EQ(map.classes[2].rgb, (std::array<uint8_t, 3>{30, 20, 10}));
+  EXPECT_EQ(map.class_index("do_not_enter_line"), -1);
+  EXPECT_EQ(map.labels[map.geometry.index(3, 2)], map.class_index("no_entry_line"));
   EXPECT_EQ(map.labels[map.geometry.index(0, 0)], map.class_index("others"));
   EXPECT_EQ(map.unknown_color_cells, 0);
+
+  dir.write("both.yaml",
+            "image: ism.png\nogm_info_yaml: ogm.yaml\nobjects: [door, do_not_enter_line, no_entry_line]\n"
+            "door_color: [255, 0, 255]\ndo_not_enter_line_color: [30, 20, 10]\nno_entry_line_color: [255, 0, 0]\n");
+  EXPECT_EQ(load_error(dir.file("both.yaml")),
+            dir.file("both.yaml") +
+                ":3: key 'objects': lists both do_not_enter_line and no_entry_line, which are one class here");
 }
 
 TEST(SemanticMap, BadMapsGiveOneLineNamingFileAndProblem) {

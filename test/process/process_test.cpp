@@ -21,7 +21,7 @@
 #include "slamer/velocity_command_t.hpp"
 #include "slamer/wheel_encoders_t.hpp"
 #include "test/support/child_process.hpp"
-#include "test/support/lcm_capture.hpp"
+#include "test/support/lcm_test_bus.hpp"
 
 namespace slamer {
 namespace {
@@ -31,9 +31,7 @@ using test::ChildProcess;
 
 template <class Msg>
 std::vector<uint8_t> encode(const Msg& msg) {
-  std::vector<uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
-  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
+  return test::LcmTestBus::encode(msg);
 }
 
 laser_scan_t make_scan(int64_t seq) {
@@ -55,41 +53,12 @@ laser_scan_t make_scan(int64_t seq) {
   return scan;
 }
 
-// The test's own end of the LCM bus: publishes raw bytes and collects decoded messages.
-class Bus {
- public:
-  explicit Bus(const std::string& url) : capture_(url) { EXPECT_TRUE(capture_.lcm().good()) << "cannot open " << url; }
-
-  void publish_raw(const std::string& channel, const std::vector<uint8_t>& bytes) {
-    capture_.lcm().publish(channel, bytes.data(), static_cast<unsigned int>(bytes.size()));
-  }
-  template <class Msg>
-  void publish(const std::string& channel, const Msg& msg) {
-    publish_raw(channel, encode(msg));
-  }
-
-  template <class Msg>
-  std::vector<Msg>* collect(const std::string& channel) {
-    auto store = std::make_shared<std::vector<Msg>>();
-    stores_.push_back(store);
-    capture_.capture(channel, store.get());
-    return store.get();
-  }
-
-  // Handles messages until `done` is true or `timeout_s` passes; `tick` runs every 50 ms.
-  bool pump_until(const std::function<bool()>& done, double timeout_s, const std::function<void()>& tick = {}) {
-    return capture_.pump_until(done, timeout_s, tick);
-  }
-
- private:
-  std::vector<std::shared_ptr<void>> stores_;  // before capture_: its handlers point into them
-  test::LcmCapture capture_;
-};
+using Bus = test::LcmTestBus;
 
 TEST(Processes, TwoProcessesExchangeMessagesOverMulticast) {
   const std::string url = test::unique_lcm_url(1);
   Bus bus(url);
-  auto* echoes = bus.collect<laser_scan_t>("LIDAR_ECHO");
+  const auto* echoes = &bus.collect<laser_scan_t>("LIDAR_ECHO");
   ChildProcess echo(binary_path("slamer-test-echo"), {"--lcm-url", url});
   ChildProcess status(binary_path("slamer-status"),
                       {"--lcm-url", url, "--once", "3", "--expect", "slamer-test-echo", "--json"});
@@ -98,7 +67,7 @@ TEST(Processes, TwoProcessesExchangeMessagesOverMulticast) {
   ASSERT_TRUE(bus.pump_until([&] { return !echoes->empty(); }, 5.0, [&] { bus.publish("LIDAR", make_scan(++seq)); }))
       << "no echo; echo stderr:\n"
       << echo.stderr_text();
-  const laser_scan_t& got = echoes->front();
+  const laser_scan_t& got = echoes->front().msg;
   EXPECT_GE(got.seq, 1);
   EXPECT_EQ(got.utime, 1'700'000'000'000'000 + got.seq);
   ASSERT_EQ(got.ranges.size(), 1081u);
@@ -149,8 +118,8 @@ std::map<std::string, std::vector<uint8_t>> valid_messages() {
 TEST(Processes, GarbageOnEveryChannelIsCountedAndSurvived) {
   const std::string url = test::unique_lcm_url(2);
   Bus bus(url);
-  auto* echoes = bus.collect<laser_scan_t>("LIDAR_ECHO");
-  auto* statuses = bus.collect<process_status_t>("PROCESS_STATUS");
+  const auto* echoes = &bus.collect<laser_scan_t>("LIDAR_ECHO");
+  const auto* statuses = &bus.collect<process_status_t>("PROCESS_STATUS");
   ChildProcess echo(binary_path("slamer-test-echo"), {"--lcm-url", url});
   ASSERT_TRUE(bus.pump_until([&] { return !echoes->empty(); }, 5.0, [&] { bus.publish("LIDAR", make_scan(1)); }))
       << echo.stderr_text();
@@ -193,7 +162,7 @@ TEST(Processes, GarbageOnEveryChannelIsCountedAndSurvived) {
 
   // Its PROCESS_STATUS counts every bad message on the channel it came in on.
   const auto counted_all = [&] {
-    for (const process_status_t& s : *statuses) {
+    for (const auto& [s, received_at] : *statuses) {
       if (s.process != "slamer-test-echo") {
         continue;
       }
@@ -216,7 +185,7 @@ TEST(Processes, GarbageOnEveryChannelIsCountedAndSurvived) {
   for (const auto& [channel, n] : sent_bad) {
     total_bad += n;
   }
-  EXPECT_EQ(statuses->back().decode_errors, total_bad);
+  EXPECT_EQ(statuses->back().msg.decode_errors, total_bad);
 
   echo.signal(SIGINT);
   ASSERT_EQ(echo.wait(3.0), std::optional<int>(0));

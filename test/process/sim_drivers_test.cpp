@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -23,7 +24,7 @@
 #include "slamer/process_status_t.hpp"
 #include "slamer/wheel_encoders_t.hpp"
 #include "test/support/driver_processes.hpp"
-#include "test/support/lcm_capture.hpp"
+#include "test/support/lcm_test_bus.hpp"
 
 namespace slamer {
 namespace {
@@ -61,6 +62,15 @@ double percentile(std::vector<double> values, double p) {
   return values[std::min(values.size() - 1, static_cast<std::size_t>(p * static_cast<double>(values.size())))];
 }
 
+template <class Msg>
+std::vector<Msg> messages(const std::deque<test::Received<Msg>>& received) {
+  std::vector<Msg> out;
+  for (const auto& r : received) {
+    out.push_back(r.msg);
+  }
+  return out;
+}
+
 Pose2 pose_of(const odometry_t& o) {
   return {o.x, o.y, o.theta};
 }
@@ -81,19 +91,14 @@ bool sim_pose_at(const std::vector<odometry_t>& track, int64_t utime, Pose2* pos
 
 TEST(SimThroughDrivers, LidarAndOdometryAreTheSimulatedOnes) {
   const std::string url = test::unique_lcm_url(41);
-  test::LcmCapture bus(url);
-  std::vector<laser_scan_t> sim_scans, scans;
-  std::vector<odometry_t> sim_odometry, odometry;
-  std::vector<wheel_encoders_t> sim_encoders, encoders;
-  std::vector<process_status_t> status;
-  bus.capture("SIM_LIDAR", &sim_scans);
-  bus.capture("LIDAR", &scans);
-  bus.capture("SIM_ODOMETRY", &sim_odometry);
-  bus.capture("ODOMETRY", &odometry);
-  bus.capture("SIM_WHEEL_ENCODERS", &sim_encoders);
-  bus.capture("WHEEL_ENCODERS", &encoders);
-  bus.capture("PROCESS_STATUS", &status);
-
+  test::LcmTestBus bus(url);
+  const auto& sim_lidar = bus.collect<laser_scan_t>("SIM_LIDAR");
+  const auto& lidar = bus.collect<laser_scan_t>("LIDAR");
+  const auto& sim_odometry_in = bus.collect<odometry_t>("SIM_ODOMETRY");
+  const auto& odometry_in = bus.collect<odometry_t>("ODOMETRY");
+  const auto& sim_encoders_in = bus.collect<wheel_encoders_t>("SIM_WHEEL_ENCODERS");
+  const auto& encoders_in = bus.collect<wheel_encoders_t>("WHEEL_ENCODERS");
+  const auto& status = bus.collect<process_status_t>("PROCESS_STATUS");
   int port = 0;
   auto urg_sim = test::start_urg_sim({"--source-channel", "SIM_LIDAR", "--lcm-url", url, "--drift-ppm", "50"}, &port);
   const std::string link = test::temp_path("sim_drivers_tfrog");
@@ -103,8 +108,8 @@ TEST(SimThroughDrivers, LidarAndOdometryAreTheSimulatedOnes) {
   // Both drivers up: the board streams, the sensor answered (it has no scans to send yet).
   ASSERT_TRUE(bus.pump_until(
       [&] {
-        return odometry.size() >= 20 && std::any_of(status.begin(), status.end(), [](const process_status_t& s) {
-                 return s.process == "slamer-urg" && s.message.find("URM-40LC-EW") != std::string::npos;
+        return odometry_in.size() >= 20 && std::any_of(status.begin(), status.end(), [](const auto& s) {
+                 return s.msg.process == "slamer-urg" && s.msg.message.find("URM-40LC-EW") != std::string::npos;
                });
       },
       10.0))
@@ -116,6 +121,9 @@ TEST(SimThroughDrivers, LidarAndOdometryAreTheSimulatedOnes) {
   ASSERT_TRUE(bus.pump_until([&] { return !sim.running(); }, 40.0)) << sim.stderr_text();
   ASSERT_EQ(sim.wait(1.0), 0) << sim.stderr_text();
   bus.pump_for(0.5);
+  const std::vector<laser_scan_t> sim_scans = messages(sim_lidar), scans = messages(lidar);
+  const std::vector<odometry_t> sim_odometry = messages(sim_odometry_in), odometry = messages(odometry_in);
+  const std::vector<wheel_encoders_t> sim_encoders = messages(sim_encoders_in), encoders = messages(encoders_in);
   ASSERT_GT(sim_scans.size(), 400u) << sim.stderr_text();
   ASSERT_FALSE(scans.empty()) << urg->stderr_text() << urg_sim->stderr_text();
 
@@ -245,8 +253,8 @@ TEST(SimThroughDrivers, LidarAndOdometryAreTheSimulatedOnes) {
             << " ms (mean " << best_mean * 1000 << " mm off at that delay); at the end " << end_position * 1000
             << " mm / " << end_heading * 180 / M_PI << " deg after " << std::hypot(sim_end.x, sim_end.y) << " m\n";
   std::string wheels_status;
-  for (const process_status_t& st : status) {
-    wheels_status = st.process == "slamer-wheels" ? st.message : wheels_status;
+  for (const auto& st : status) {
+    wheels_status = st.msg.process == "slamer-wheels" ? st.msg.message : wheels_status;
   }
   const std::string why = "slamer-wheels: " + wheels_status + "\n" + wheels->stderr_text() + "slamer-tfrog-sim:\n" +
                           tfrog_sim->stdout_text() + tfrog_sim->stderr_text();

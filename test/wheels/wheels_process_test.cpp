@@ -19,7 +19,6 @@
 #include "slamer/wheel_encoders_t.hpp"
 #include "test/support/child_process.hpp"
 #include "test/support/driver_processes.hpp"
-#include "test/support/lcm_capture.hpp"
 
 namespace slamer {
 namespace {
@@ -34,16 +33,32 @@ int64_t wall_utime() {
 
 class Bus {
  public:
-  explicit Bus(const std::string& url) : capture_(url) {
-    capture_.capture("ODOMETRY", &odometry);
-    capture_.capture("WHEEL_ENCODERS", &encoders);
-    capture_.capture("PROCESS_STATUS", &status);
+  explicit Bus(const std::string& url) : lcm_(url) {
+    subscribe<odometry_t>("ODOMETRY", &odometry);
+    subscribe<wheel_encoders_t>("WHEEL_ENCODERS", &encoders);
+    subscribe<process_status_t>("PROCESS_STATUS", &status);
   }
   bool pump_until(const std::function<bool()>& done, double timeout_s, const std::function<void()>& every_50ms = {}) {
-    return capture_.pump_until(done, timeout_s, every_50ms);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    auto next = std::chrono::steady_clock::now();
+    while (!done()) {
+      if (std::chrono::steady_clock::now() >= deadline) {
+        return false;
+      }
+      if (every_50ms && std::chrono::steady_clock::now() >= next) {
+        every_50ms();
+        next += std::chrono::milliseconds(50);
+      }
+      // Drain everything queued: 200 Hz ODOMETRY + WHEEL_ENCODERS must not pile up behind us.
+      if (lcm_.handleTimeout(5) > 0) {
+        while (lcm_.handleTimeout(0) > 0) {
+        }
+      }
+    }
+    return true;
   }
   void pump_for(double seconds, const std::function<void()>& every_50ms = {}) {
-    capture_.pump_for(seconds, every_50ms);
+    pump_until([] { return false; }, seconds, every_50ms);
   }
   // Pumps until ODOMETRY and WHEEL_ENCODERS have caught up with `utime` (a loaded machine lags).
   bool catch_up(int64_t utime, double timeout_s) {
@@ -59,7 +74,7 @@ class Bus {
     msg.utime = wall_utime();
     msg.v = v;
     msg.omega = omega;
-    capture_.lcm().publish("CMD_VEL", &msg);
+    lcm_.publish("CMD_VEL", &msg);
     last_command = msg.utime;
   }
   std::vector<odometry_t> odometry;
@@ -68,7 +83,24 @@ class Bus {
   int64_t last_command = 0;
 
  private:
-  test::LcmCapture capture_;
+  template <class Msg>
+  void subscribe(const std::string& channel, std::vector<Msg>* store) {
+    handlers_.push_back(
+        std::make_unique<std::function<void(const lcm::ReceiveBuffer*)>>([store](const lcm::ReceiveBuffer* buffer) {
+          Msg msg;
+          if (decode_message(buffer->data, buffer->data_size, &msg) == DecodeStatus::kOk) {
+            store->push_back(msg);
+          }
+        }));
+    lcm_.subscribeFunction(
+        channel,
+        +[](const lcm::ReceiveBuffer* b, const std::string&, std::function<void(const lcm::ReceiveBuffer*)>* f) {
+          (*f)(b);
+        },
+        handlers_.back().get());
+  }
+  lcm::LCM lcm_;
+  std::vector<std::unique_ptr<std::function<void(const lcm::ReceiveBuffer*)>>> handlers_;
 };
 
 // Lines "<utime> <word> ..." of an emulator's stdout.

@@ -79,12 +79,21 @@ void import_corrected(std::vector<DatasetRecord>& records, ImportedLog* log) {
     return;
   }
   Pose2 raw = scan_at[0] > 0 ? records[scan_at[0] - 1].pose : reference_of(records[scan_at[0]]);
+  // A log whose times mostly do not advance from scan to scan (csail prints
+  // 6 significant digits: one value for 365 scans, then a step of 10^4 s)
+  // has no time base at all: every scan then goes at the nominal period, or
+  // the rare steps of the printed time would become gaps of hours.
+  std::size_t stuck = 0;
+  for (std::size_t k = 1; k < scan_at.size(); ++k) {
+    stuck += records[scan_at[k]].scan.sensor_utime < records[scan_at[k - 1]].scan.sensor_utime + kMinScanStep;
+  }
+  const bool no_time_base = 2 * stuck > scan_at.size();
   int64_t previous = 0;
   std::vector<int64_t> utimes;
   for (std::size_t k = 0; k < scan_at.size(); ++k) {
     const DatasetRecord& r = records[scan_at[k]];
     int64_t utime = r.scan.sensor_utime;
-    if (k > 0 && utime < previous + kMinScanStep) {
+    if (k > 0 && (no_time_base || utime < previous + kMinScanStep)) {
       utime = previous + kNominalScanStep;
       ++log->retimed;
     }

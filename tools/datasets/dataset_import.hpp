@@ -16,7 +16,9 @@
 // the log's own time in `sensor_utime`.
 //  * Scans of a corrected log: the log's time when it is at least 1 ms after
 //    the previous scan's utime, else the previous utime + 100 ms (a nominal
-//    scan period; csail prints its times with 6 digits, so all are equal).
+//    scan period); a log where that is so for most scans has no time base
+//    (csail prints its times with 6 digits: 365 equal, then a 10^4 s step)
+//    and every scan goes at the nominal period.
 //    The ODOM lines' times are not usable there (the re-anchoring line says
 //    0), so the rebuilt pose at scan k is sent at scan k's utime, just before
 //    the scan, and the poses between two scans are spread evenly between them.
