@@ -22,9 +22,6 @@ int64_t now_utime() {
       .count();
 }
 
-namespace {
-
-// LCM treats a channel as a regular expression; quote it so "A.B" is literal.
 std::string literal_pattern(const std::string& channel) {
   std::string pattern;
   for (const char c : channel) {
@@ -35,8 +32,6 @@ std::string literal_pattern(const std::string& channel) {
   }
   return pattern;
 }
-
-}  // namespace
 
 struct LcmBus::Context {
   LcmBus* bus;
@@ -107,7 +102,9 @@ int LcmBus::run() {
   std::vector<int> watched_fds;
   while (!stopping()) {
     const int64_t wait = std::clamp<int64_t>(next_timer_due() - now(), 0, kMaxWaitUs);
-    fds.assign({{lcm_->getFileno(), POLLIN, 0}, {signal_fd_, POLLIN, 0}});
+    // A program that subscribes to nothing never opens LCM's receive side: no
+    // copies of every datagram on the group (its own included) to read and drop.
+    fds.assign({{channels_.empty() ? -1 : lcm_->getFileno(), POLLIN, 0}, {signal_fd_, POLLIN, 0}});
     watched_fds.clear();
     for (const auto& [fd, callback] : watched_) {
       fds.push_back({fd, POLLIN, 0});

@@ -19,6 +19,9 @@ namespace slamer {
 // Host time now [us since the Unix epoch]; only process code reads clocks.
 int64_t now_utime();
 
+// LCM treats a channel as a regular expression: the pattern that matches exactly `channel`.
+std::string literal_pattern(const std::string& channel);
+
 class LcmBus final : public Bus {
  public:
   // Throws std::runtime_error with a one-line reason if LCM cannot be opened.

@@ -1,10 +1,14 @@
 // slamer-urg: a Hokuyo URG (SCIP 2.0 over TCP or serial) -> laser_scan_t on LIDAR.
 // The sensor I/O runs on its own thread (bytes are timestamped as they arrive,
-// whatever the bus is doing); the bus (live LCM) publishes its scans and
-// PROCESS_STATUS from its timers.
+// whatever the bus is doing) and wakes the bus through an eventfd when it has
+// scans; the bus (live LCM) publishes them, and PROCESS_STATUS from its timers.
+#include <sys/eventfd.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <cstdio>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 #include "common/process/bus.hpp"
@@ -46,19 +50,34 @@ int run(const UrgProcessConfig& config, const CommandLine& cli) {
   std::vector<LaserScan> queue;
   UrgDriverStatus status;
   std::atomic<bool> stop{false};
+  const int wake = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+  if (wake < 0) {
+    throw std::runtime_error("cannot create an eventfd");
+  }
   std::thread io([&] {
     UrgDriver driver(config);
+    int64_t status_at = 0;
     while (!stop) {
       driver.step(10);
       std::vector<LaserScan> scans = driver.take_scans();
+      const int64_t now = host_now_us();
       std::lock_guard<std::mutex> lock(mutex);
       for (auto& s : scans) {
         queue.push_back(std::move(s));
       }
-      status = driver.status();
+      if (!scans.empty() || now - status_at >= 50000) {  // the status copy allocates: 20 Hz is plenty
+        status = driver.status();
+        status_at = now;
+      }
+      if (!scans.empty()) {
+        const uint64_t one = 1;
+        (void)!write(wake, &one, sizeof one);
+      }
     }
   });
-  process.every(0.01, [&] {
+  process.watch(wake, [&] {
+    uint64_t count = 0;
+    (void)!read(wake, &count, sizeof count);
     std::vector<LaserScan> scans;
     {
       std::lock_guard<std::mutex> lock(mutex);
@@ -92,6 +111,7 @@ int run(const UrgProcessConfig& config, const CommandLine& cli) {
   const int code = process.run();
   stop = true;
   io.join();
+  close(wake);
   return code;
 }
 

@@ -50,7 +50,7 @@ bool digits(const std::string& text, std::size_t pos, std::size_t count, int* va
 
 bool is_urg04_family(const std::string& model) {
   return model.find("URG-04") != std::string::npos || model.find("UBG-04") != std::string::npos ||
-         model.find("URG-X") != std::string::npos;
+         model.find("UHG-08") != std::string::npos || model.find("URG-X") != std::string::npos;
 }
 
 }  // namespace
@@ -205,7 +205,7 @@ float range_from_device(uint32_t value, const SensorGeometry& geometry) {
   }
   constexpr float kInf = std::numeric_limits<float>::infinity();
   if (is_urg04_family(geometry.model)) {
-    return value <= 5 ? kInf : std::numeric_limits<float>::quiet_NaN();
+    return value == 0 ? kInf : std::numeric_limits<float>::quiet_NaN();
   }
   if (value == 1) {
     return kInf;

@@ -52,11 +52,22 @@ struct ScanData {
 // straddle line breaks. Checks checksums, the line lengths and the count.
 ScanError decode_scan(const Reply& reply, ScanData* scan);
 
-// REP 117: values >= DMIN are metres; smaller ones are error codes: per the
-// model family (URG-04LX table 3: 0 "possibly beyond 22 m" and 1-5 "low
-// intensity" = no echo -> +inf; UTM-30LX table 4: 1 "no object in range" ->
-// +inf, 2 "too near" and 4 "out of range at the near end" -> -inf); every
-// other code -> NaN.
+// REP 117 (ros.org/reps/rep-0117.html: -Inf "too close to determine the true
+// distance", +Inf "no information within the useful range, likely no object
+// in range", NaN "an erroneous measurement with no useful physical
+// quantification"). Values >= DMIN are metres; smaller ones are the error
+// codes of SCIP 2.0 C-42-03320B p12 (also decoded this way by ROS's
+// hokuyo_node, the REP author's driver):
+// - table 3 (URG-04LX, UBG-04LX-F01, UHG-08LX; codes 0-19): 0 "detected
+//   object is possibly at 22 m" (beyond the range) -> +inf; 1-2 "reflected
+//   light has low intensity", 6-19 (errors of neighbouring steps, of the last
+//   scans, strong reflectors, non-measurable steps, others) and the unlisted
+//   3-5 -> NaN. (Older editions call 6 "possibly at 5.7 m"; the spec revision
+//   here says "others".)
+// - table 4 (UTM-30LX, used for every other model): 1 "no object in the range"
+//   -> +inf; 2 "object is too near" and 4 "object out of range (at the near
+//   end)" -> -inf; 3 "measurement error (interference)", 5 "other errors" and
+//   any other value below DMIN -> NaN.
 float range_from_device(uint32_t value, const SensorGeometry& geometry);
 
 }  // namespace slamer::urg

@@ -54,6 +54,39 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
          EXPECT_EQ(config.session.last_step, -1);
          EXPECT_EQ(config.session.cluster, 1);
        }},
+      {"sim_drivers.yaml",
+       [](const std::string& path) {
+         // config/sim.yaml with the sensor channels renamed for the device emulators.
+         const auto config = load_options<SimProcessConfig>(path);
+         const auto plain = load_options<SimProcessConfig>(std::string(SLAMER_SOURCE_DIR) + "/config/sim.yaml");
+         EXPECT_EQ(config.channels.lidar, "SIM_LIDAR");
+         EXPECT_EQ(config.channels.wheel_encoders, "SIM_WHEEL_ENCODERS");
+         EXPECT_EQ(config.channels.odometry, "SIM_ODOMETRY");
+         EXPECT_EQ(config.channels.ground_truth, "GROUND_TRUTH");
+         EXPECT_EQ(config.sim.step, plain.sim.step);
+         EXPECT_EQ(config.sim.encoder_period, plain.sim.encoder_period);
+         EXPECT_EQ(config.sim.range_stddev, plain.sim.range_stddev);
+         EXPECT_EQ(config.sim.dropout_probability, plain.sim.dropout_probability);
+         EXPECT_EQ(config.sim.wheel_radius_error_left, plain.sim.wheel_radius_error_left);
+         EXPECT_EQ(config.sim.wheel_radius_error_right, plain.sim.wheel_radius_error_right);
+         EXPECT_EQ(config.sim.tread_error, plain.sim.tread_error);
+         EXPECT_EQ(config.sim.slip_stddev, plain.sim.slip_stddev);
+         EXPECT_EQ(config.sim.wheel_slip.turn_slip, plain.sim.wheel_slip.turn_slip);
+         EXPECT_EQ(config.sim.wheel_slip.bump_rate, plain.sim.wheel_slip.bump_rate);
+       }},
+      {"urg_sim.yaml",
+       [](const std::string& path) {
+         const auto config = load_options<urg::UrgProcessConfig>(path);
+         EXPECT_EQ(config.connection.host, "127.0.0.1");
+         EXPECT_EQ(config.connection.port, 10940);
+         EXPECT_EQ(config.lidar_channel, "LIDAR");
+       }},
+      {"wheels_sim.yaml",
+       [](const std::string& path) {
+         const auto config = load_options<WheelsConfig>(path);
+         EXPECT_EQ(config.tfrog.device, "/tmp/slamer-tfrog");
+         EXPECT_EQ(config.channels.odometry, "ODOMETRY");
+       }},
       {"eval.yaml", [](const std::string& path) { load_options<EvalConfig>(path); }},
       {"recognizer.yaml", [](const std::string& path) { load_options<RecognizerProcessConfig>(path); }},
       {"localizer.yaml",

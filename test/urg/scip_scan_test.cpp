@@ -106,24 +106,33 @@ TEST(Geometry, FromPp) {
   EXPECT_NE(error.find("ARES"), std::string::npos);
 }
 
+// SCIP 2.0 C-42-03320B p12: every error code of table 3 (URG-04LX, UBG-04LX-F01,
+// UHG-08LX) and table 4 (UTM-30LX) with its REP 117 class.
 TEST(Ranges, Rep117ErrorCodes) {
-  SensorGeometry utm;
   std::string error;
+  SensorGeometry utm;
   ASSERT_TRUE(parse_geometry(pp("UTM-30LX"), &utm, &error));
-  EXPECT_FLOAT_EQ(range_from_device(23, utm), 0.023f);
+  EXPECT_FLOAT_EQ(range_from_device(23, utm), 0.023f);  // DMIN is a range
   EXPECT_FLOAT_EQ(range_from_device(1500, utm), 1.5f);
-  EXPECT_EQ(range_from_device(1, utm), INFINITY);
-  EXPECT_EQ(range_from_device(2, utm), -INFINITY);
-  EXPECT_EQ(range_from_device(4, utm), -INFINITY);
-  EXPECT_TRUE(std::isnan(range_from_device(3, utm)));
-  EXPECT_TRUE(std::isnan(range_from_device(5, utm)));
+  EXPECT_EQ(range_from_device(1, utm), INFINITY);      // no object in the range
+  EXPECT_EQ(range_from_device(2, utm), -INFINITY);     // object is too near
+  EXPECT_TRUE(std::isnan(range_from_device(3, utm)));  // measurement error (interference)
+  EXPECT_EQ(range_from_device(4, utm), -INFINITY);     // out of range at the near end
+  EXPECT_TRUE(std::isnan(range_from_device(5, utm)));  // other errors
+  EXPECT_TRUE(std::isnan(range_from_device(0, utm)));  // not in table 4
   EXPECT_TRUE(std::isnan(range_from_device(22, utm)));
-  SensorGeometry urg04;
-  ASSERT_TRUE(parse_geometry(pp("URG-04LX"), &urg04, &error));
-  EXPECT_EQ(range_from_device(0, urg04), INFINITY);
-  EXPECT_EQ(range_from_device(3, urg04), INFINITY);
-  EXPECT_TRUE(std::isnan(range_from_device(7, urg04)));
-  EXPECT_TRUE(std::isnan(range_from_device(19, urg04)));
+  for (const std::string model : {"URG-04LX", "URG-04LX-UG01", "UBG-04LX-F01", "UHG-08LX"}) {
+    SensorGeometry g;
+    KeyValues kv = pp(model);
+    kv.items[1].second = "20";  // DMIN
+    ASSERT_TRUE(parse_geometry(kv, &g, &error));
+    EXPECT_EQ(range_from_device(0, g), INFINITY) << model;  // possibly at 22 m: beyond the range
+    for (uint32_t code = 1; code <= 19; ++code) {
+      // 1-2 low intensity, 6-19 errors and others, 3-5 unlisted: none is a distance.
+      EXPECT_TRUE(std::isnan(range_from_device(code, g))) << model << " code " << code;
+    }
+    EXPECT_FLOAT_EQ(range_from_device(20, g), 0.020f) << model;
+  }
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "slamer/laser_scan_t.hpp"
 #include "slamer/process_status_t.hpp"
 #include "test/support/child_process.hpp"
+#include "test/support/driver_processes.hpp"
 #include "tools/urg_sim/sim_sensor.hpp"
 
 namespace slamer {
@@ -65,46 +66,16 @@ struct Bus {
   std::vector<process_status_t> statuses;
 };
 
-std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / (name + "_" + std::to_string(getpid()))).string();
-}
+using test::free_port;
+using test::temp_path;
 
-int free_port() {
-  const int s = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(s, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
-  socklen_t len = sizeof addr;
-  getsockname(s, reinterpret_cast<sockaddr*>(&addr), &len);
-  close(s);
-  return ntohs(addr.sin_port);
-}
-
-// Starts the emulator and waits for its port.
 std::unique_ptr<test::ChildProcess> start_sim(std::vector<std::string> args, int* port) {
-  const std::string port_file = temp_path("urg_port");
-  std::filesystem::remove(port_file);
-  args.insert(args.end(), {"--port-file", port_file});
-  if (*port > 0) {
-    args.insert(args.end(), {"--port", std::to_string(*port)});
-  }
-  auto sim = std::make_unique<test::ChildProcess>(test::binary_path("slamer-urg-sim"), args);
-  for (int i = 0; i < 200 && !std::filesystem::exists(port_file); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  *port = std::stoi(test::read_file(port_file));
-  return sim;
+  return test::start_urg_sim(std::move(args), port);
 }
 
 std::unique_ptr<test::ChildProcess> start_driver(const std::string& url, int port,
                                                  std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"--config",  std::string(SLAMER_SOURCE_DIR) + "/config/urg.yaml",
-                                   "--host",    "127.0.0.1",
-                                   "--port",    std::to_string(port),
-                                   "--lcm-url", url};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return std::make_unique<test::ChildProcess>(test::binary_path("slamer-urg"), args);
+  return test::start_urg(url, port, extra);
 }
 
 TEST(UrgProcess, PublishesScansWithPpGeometryAndTheSceneRanges) {
@@ -281,6 +252,50 @@ TEST(UrgProcess, SerialPathOverAPty) {
   ASSERT_TRUE(bus.pump_until([&] { return bus.scans.size() >= 5; }, 6.0)) << driver->stderr_text();
   EXPECT_EQ(bus.scans.back().nranges, 682);
   std::filesystem::remove(link);
+}
+
+// --source-log: a log's scans at their own pace, each once, with their ranges; the emulator exits after the last.
+TEST(UrgProcess, ScansFromALogAtTheirOwnPace) {
+  const std::string log_path = temp_path("urg_source") + ".lcm";
+  {
+    lcm::LogFile log(log_path, "w");
+    for (int k = 0; k < 60; ++k) {
+      laser_scan_t scan{};
+      scan.utime = 1'700'000'000'000'000 + k * 25000;
+      scan.frame = "laser";
+      scan.angle_min = -0.75 * std::numbers::pi;
+      scan.angle_increment = 2 * std::numbers::pi / 1440;
+      scan.range_min = 0.06f;
+      scan.range_max = 30.0f;
+      scan.scan_period = 0.025f;
+      scan.nranges = 1081;
+      scan.ranges.assign(1081, 1.0f + 0.01f * static_cast<float>(k));
+      scan.ranges[5] = INFINITY;
+      scan.nintensities = 0;
+      std::vector<uint8_t> bytes(static_cast<std::size_t>(scan.getEncodedSize()));
+      scan.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+      lcm::LogEvent event{k, scan.utime, "SIM_SCANS", static_cast<int32_t>(bytes.size()), bytes.data()};
+      ASSERT_EQ(log.writeEvent(&event), 0);
+    }
+  }
+  const std::string url = test::unique_lcm_url(9);
+  Bus bus(url);
+  int port = 0;
+  auto sim = start_sim({"--source-log", log_path, "--source-channel", "SIM_SCANS"}, &port);
+  auto driver = start_driver(url, port);
+  ASSERT_TRUE(bus.pump_until([&] { return !sim->running(); }, 15.0)) << sim->stderr_text();
+  EXPECT_NE(sim->stdout_text().find("the scan source has ended"), std::string::npos) << sim->stdout_text();
+  bus.pump_for(0.2);
+  ASSERT_EQ(bus.scans.size(), 60u) << driver->stderr_text();
+  for (std::size_t k = 0; k < bus.scans.size(); ++k) {
+    const laser_scan_t& s = bus.scans[k];
+    EXPECT_FLOAT_EQ(s.ranges[0], std::round((1.0f + 0.01f * static_cast<float>(k)) * 1000.0f) / 1000.0f) << k;
+    EXPECT_EQ(s.ranges[5], INFINITY);
+    if (k > 0) {
+      EXPECT_NEAR(static_cast<double>(s.utime - bus.scans[k - 1].utime), 25000.0, 1000.0) << k;
+    }
+  }
+  std::filesystem::remove(log_path);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "slamer/velocity_command_t.hpp"
 #include "slamer/wheel_encoders_t.hpp"
 #include "test/support/child_process.hpp"
+#include "test/support/driver_processes.hpp"
 
 namespace slamer {
 namespace {
@@ -144,17 +145,8 @@ struct Rig {
       : url(test::unique_lcm_url(salt)),
         link("/tmp/slamer_wheels_test_" + std::to_string(getpid()) + "_" + std::to_string(salt)),
         bus(url) {
-    std::vector<std::string> args = {"--link", link, "--robot",
-                                     std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart-mini.param"};
-    args.insert(args.end(), sim_args.begin(), sim_args.end());
-    sim = std::make_unique<ChildProcess>(binary_path("slamer-tfrog-sim"), args);
-    for (int i = 0; i < 200 && access(link.c_str(), F_OK) != 0; ++i) {
-      usleep(5000);
-    }
-    wheels = std::make_unique<ChildProcess>(
-        binary_path("slamer-wheels"),
-        std::vector<std::string>{"--config", std::string(SLAMER_SOURCE_DIR) + "/config/wheels.yaml", "--device", link,
-                                 "--lcm-url", url});
+    sim = test::start_tfrog_sim(link, sim_args);
+    wheels = test::start_wheels(url, link);
   }
   std::string url;
   std::string link;

@@ -1,5 +1,6 @@
 #include "tools/tfrog_sim/wheel_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -49,6 +50,44 @@ std::array<double, 2> PathPlayer::step(double dt) {
       ++index_;
       in_segment_ = 0.0;
     }
+  }
+  return counts;
+}
+
+EncoderFollower::EncoderFollower(const Kinematics& kinematics) {
+  for (std::size_t i = 0; i < 2; ++i) {
+    sign_[i] = kinematics.radius[i] < 0 ? -1 : 1;
+  }
+}
+
+void EncoderFollower::add(int64_t utime, int64_t left_ticks, int64_t right_ticks) {
+  const std::array<int64_t, 2> wheel = {right_ticks, left_ticks};  // motor 0 = right, motor 1 = left
+  if (samples_++ == 0) {
+    first_ = wheel;
+    last_utime_ = utime;
+    return;
+  }
+  ramp_ticks_ = std::clamp<int64_t>((utime - last_utime_) / 1000, 1, 100);
+  ramp_done_ = 0;
+  last_utime_ = std::max(last_utime_, utime);
+  for (std::size_t i = 0; i < 2; ++i) {
+    target_[i] = sign_[i] * (wheel[i] - first_[i]);
+    ramp_start_[i] = commanded_[i];
+  }
+}
+
+std::array<double, 2> EncoderFollower::step() {
+  std::array<double, 2> counts{};
+  if (ramp_done_ >= ramp_ticks_) {
+    return counts;
+  }
+  ++ramp_done_;
+  for (std::size_t i = 0; i < 2; ++i) {
+    // Whole counts: the board's floating count stays exact and ends on the target.
+    const int64_t delta = target_[i] - ramp_start_[i];
+    const int64_t next = ramp_start_[i] + (delta * ramp_done_) / ramp_ticks_;
+    counts[i] = static_cast<double>(next - commanded_[i]);
+    commanded_[i] = next;
   }
   return counts;
 }

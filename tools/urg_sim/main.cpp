@@ -1,8 +1,13 @@
-// slamer-urg-sim: a SCIP 2.0 sensor emulator on loopback TCP or a pty (see sim_sensor.hpp).
+// slamer-urg-sim: a SCIP 2.0 sensor emulator on loopback TCP or a pty (see
+// sim_sensor.hpp), scanning a fixed scene, live scans from an LCM channel or
+// the scans of an LCM log (scan_feed.hpp).
 #include <cstdio>
 #include <iostream>
+#include <memory>
+#include <stdexcept>
 
 #include "common/process/command_line.hpp"
+#include "tools/urg_sim/scan_feed.hpp"
 #include "tools/urg_sim/sim_server.hpp"
 
 int main(int argc, char** argv) {
@@ -33,6 +38,11 @@ int main(int argc, char** argv) {
   cl.add_option("truth", "PATH", "CSV of device stamp and true first-beam host time of each scan");
   cl.add_option("duration", "S", "exit after S seconds (0: run until a signal)", "0");
   cl.add_option("seed", "N", "random seed", "1");
+  cl.add_option("source-channel", "CHANNEL",
+                "send the laser_scan_t scans received live on CHANNEL (with --source-log: the log's channel, "
+                "default LIDAR); their geometry must be the model's");
+  cl.add_option("source-log", "FILE", "send the scans of this LCM log at their own pace, then exit");
+  cl.add_option("lcm-url", "URL", "LCM URL for --source-channel", "");
   try {
     if (!cl.parse(argc, argv, std::cout)) {
       return 0;
@@ -74,10 +84,21 @@ int main(int argc, char** argv) {
     options.truth_file = cl.get("truth");
     options.duration_s = cl.get_double("duration");
     options.seed = knobs.seed;
+    std::unique_ptr<ScanFeed> feed;
+    if (cl.has("source-log")) {
+      feed = std::make_unique<LogScanFeed>(cl.get("source-log"),
+                                           cl.has("source-channel") ? cl.get("source-channel") : "LIDAR");
+    } else if (cl.has("source-channel")) {
+      feed = std::make_unique<LcmScanFeed>(cl.get("lcm-url"), cl.get("source-channel"));
+    }
+    knobs.external_scans = feed != nullptr;
     SimSensor sensor(model, knobs);
-    return run_sim_server(sensor, options);
+    return run_sim_server(sensor, options, feed.get());
   } catch (const CommandLineError& e) {
     std::fprintf(stderr, "slamer-urg-sim: %s\n", e.what());
     return 2;
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "slamer-urg-sim: %s\n", e.what());
+    return 1;
   }
 }

@@ -50,6 +50,7 @@ void SimSensor::power_on(int64_t host_us) {
   reboot_ = false;
   error_latched_ = false;
   scans_total_ = 0;
+  fed_.clear();
 }
 
 double SimSensor::device_ms(int64_t host_us) const {
@@ -210,6 +211,9 @@ void SimSensor::command(const std::string& line, int64_t now) {
     laser_on_ = true;
     state_ = State::kScanning;
     reply(now, status_reply(line, "00"));
+    streaming_since_us_ = now;
+    rotation_ = 0;
+    fed_.clear();
     // The next rotation: first beams every period from the power-up on the host clock.
     const int64_t period = static_cast<int64_t>(60e6 / model_.scan_rpm);
     const int64_t beam_offset =
@@ -247,21 +251,31 @@ double SimSensor::range_mm(int step) const {
   return best * 1000.0;
 }
 
-void SimSensor::emit_scan(int64_t first_beam_us) {
+int64_t SimSensor::scan_ready_us(int64_t first_beam_us) const {
+  const int64_t period = static_cast<int64_t>(60e6 / model_.scan_rpm);
+  return first_beam_us +
+         static_cast<int64_t>(static_cast<double>(end_ - start_ + 1) / model_.ares * static_cast<double>(period));
+}
+
+void SimSensor::emit_scan(int64_t first_beam_us, int64_t ready, const SimScan* source) {
   const double dms = device_ms(first_beam_us);
   const uint32_t stamp = static_cast<uint32_t>(std::floor(dms)) & 0xFFFFFFu;
   std::string data;
   for (int step = start_; step <= end_; step += cluster_) {
-    double r = range_mm(step);
     uint32_t value;
-    if (no_echo_step(step)) {
+    const std::size_t beam = static_cast<std::size_t>(step - model_.amin);
+    if (source != nullptr) {
+      value = beam < source->values.size() ? source->values[beam] : 0u;
+    } else if (no_echo_step(step)) {
       value = model_.name.find("URG-04") != std::string::npos ? 0u : 1u;  // a window: no echo
     } else {
-      value = static_cast<uint32_t>(std::clamp(r, static_cast<double>(model_.dmin), static_cast<double>(model_.dmax)));
+      value = static_cast<uint32_t>(
+          std::clamp(range_mm(step), static_cast<double>(model_.dmin), static_cast<double>(model_.dmax)));
     }
     data += scip_encode(value, 3);
     if (intensity_) {
-      data += scip_encode(static_cast<uint32_t>(1000 + (step * 37) % 3000), 3);
+      const bool given = source != nullptr && beam < source->intensities.size();
+      data += scip_encode(given ? source->intensities[beam] : static_cast<uint32_t>(1000 + (step * 37) % 3000), 3);
     }
   }
   const std::string echo = scan_echo_.substr(0, 13) +
@@ -290,35 +304,78 @@ void SimSensor::emit_scan(int64_t first_beam_us) {
   if (knobs_.garbage_rate > 0 && u(rng_) < knobs_.garbage_rate) {
     bytes = "#garbage\x01\xff!\n\n" + bytes;
   }
-  const int64_t period = static_cast<int64_t>(60e6 / model_.scan_rpm);
-  const int64_t ready = first_beam_us + static_cast<int64_t>(static_cast<double>(end_ - start_ + 1) / model_.ares *
-                                                             static_cast<double>(period));
   reply(ready, bytes);
   truth_.push_back({stamp, first_beam_us, ready});
   ++scans_sent_;
 }
 
-std::string SimSensor::poll(int64_t host_us) {
+bool SimSensor::count_scan_fails(int64_t ready) {
+  ++scans_total_;
+  if (knobs_.error_after < 0 || scans_total_ <= knobs_.error_after) {
+    return false;
+  }
+  error_latched_ = true;
+  state_ = State::kError;
+  const std::string status = knobs_.error_status.empty() ? "50" : knobs_.error_status;
+  reply(ready, status_reply(scan_echo_, status));
+  return true;
+}
+
+void SimSensor::feed(SimScan scan) {
+  if (state_ != State::kScanning) {
+    return;  // nothing is measured for the host while it is not streaming
+  }
+  fed_.push_back(std::move(scan));
+  while (fed_.size() > 400) {  // 10 s at 40 Hz: a source far ahead of real time
+    fed_.pop_front();
+  }
+}
+
+void SimSensor::poll_external(int64_t host_us) {
   const int64_t period = static_cast<int64_t>(60e6 / model_.scan_rpm);
-  while (state_ == State::kScanning) {
-    const int64_t ready = next_scan_us_ + static_cast<int64_t>(static_cast<double>(end_ - start_ + 1) / model_.ares *
-                                                               static_cast<double>(period));
+  const int64_t to_start =
+      static_cast<int64_t>(static_cast<double>(start_ - model_.amin) / model_.ares * static_cast<double>(period));
+  while (state_ == State::kScanning && !fed_.empty()) {
+    const SimScan& scan = fed_.front();
+    const int64_t first = scan.first_beam_us + to_start;
+    const int64_t ready = std::max(scan_ready_us(first), scan.received_us);
     if (ready > host_us) {
       break;
     }
-    ++scans_total_;
-    if (knobs_.error_after >= 0 && scans_total_ > knobs_.error_after) {
-      error_latched_ = true;
-      state_ = State::kError;
-      const std::string status = knobs_.error_status.empty() ? "50" : knobs_.error_status;
-      reply(ready, status_reply(scan_echo_, status));
+    if (first >= streaming_since_us_ && rotation_++ % (1 + skip_) == 0) {
+      if (count_scan_fails(ready)) {
+        break;
+      }
+      emit_scan(first, ready, &scan);
+      if (remaining_ > 0 && --remaining_ == 0) {
+        state_ = State::kIdle;
+      }
+    }
+    fed_.pop_front();
+  }
+}
+
+std::string SimSensor::poll(int64_t host_us) {
+  const int64_t period = static_cast<int64_t>(60e6 / model_.scan_rpm);
+  if (knobs_.external_scans) {
+    poll_external(host_us);
+  }
+  while (state_ == State::kScanning && !knobs_.external_scans) {
+    const int64_t ready = scan_ready_us(next_scan_us_);
+    if (ready > host_us) {
       break;
     }
-    emit_scan(next_scan_us_);
+    if (count_scan_fails(ready)) {
+      break;
+    }
+    emit_scan(next_scan_us_, ready, nullptr);
     next_scan_us_ += period * (1 + skip_);
     if (remaining_ > 0 && --remaining_ == 0) {
       state_ = State::kIdle;
     }
+  }
+  if (state_ != State::kScanning) {
+    fed_.clear();
   }
   std::string out;
   while (!out_.empty() && out_.front().due_us <= host_us) {
@@ -333,10 +390,14 @@ int64_t SimSensor::next_event_us() const {
   if (!out_.empty()) {
     next = out_.front().due_us;
   }
-  if (state_ == State::kScanning) {
+  if (state_ == State::kScanning && !knobs_.external_scans) {
+    next = std::min(next, scan_ready_us(next_scan_us_));
+  }
+  if (state_ == State::kScanning && !fed_.empty()) {
     const int64_t period = static_cast<int64_t>(60e6 / model_.scan_rpm);
-    next = std::min(next, next_scan_us_ + static_cast<int64_t>(static_cast<double>(end_ - start_ + 1) / model_.ares *
-                                                               static_cast<double>(period)));
+    const int64_t first = fed_.front().first_beam_us + static_cast<int64_t>(static_cast<double>(start_ - model_.amin) /
+                                                                            model_.ares * static_cast<double>(period));
+    next = std::min(next, std::max(scan_ready_us(first), fed_.front().received_us));
   }
   return next;
 }

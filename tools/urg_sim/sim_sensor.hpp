@@ -1,8 +1,10 @@
 // A SCIP 2.0 sensor, for slamer-urg-sim (issue 13 "The emulator"): the state
 // machine (idle, scanning, time-adjust, error; SCIP 1.1 at power-up for the
 // URG-04LX), models of URM-40LC, UST-10LX, UTM-30LX and URG-04LX, a device
-// clock with offset and drift, scans of a fixed scene, and fault knobs. Pure:
-// commands and host times in, timed reply bytes out; the program does the I/O.
+// clock with offset and drift, scans of a fixed scene or fed from outside
+// (feed(): each sent as the real sensor would, after its last requested beam,
+// stamped by the device clock at its first), and fault knobs. Pure: commands
+// and host times in, timed reply bytes out; the program does the I/O.
 #pragma once
 
 #include <cstdint>
@@ -38,7 +40,16 @@ struct SimKnobs {
   int error_after = -1;               // -1: never
   bool error_survives_reset = false;  // RS does not clear the error; RB does
   std::string model_after_reboot;     // a different model (geometry) after RB
+  bool external_scans = false;        // scans only from feed(), none of the fixed scene
   unsigned seed = 1;
+};
+
+// A scan from outside (sim_scan_source.hpp): device values for steps AMIN..AMAX.
+struct SimScan {
+  int64_t first_beam_us = 0;          // host time of step AMIN's beam
+  int64_t received_us = 0;            // when the emulator got it: it is never sent earlier
+  std::vector<uint32_t> values;       // [mm] or error codes
+  std::vector<uint32_t> intensities;  // empty: the emulator makes some up
 };
 
 struct SimTruth {
@@ -56,6 +67,10 @@ class SimSensor {
   // Generates what is due up to host_us and returns the bytes that arrive at
   // the host by then (in order).
   std::string poll(int64_t host_us);
+  // With knobs.external_scans: a scan to send while streaming (dropped when
+  // not streaming, or when it began before the MD/ME command, as a real sensor
+  // only sends rotations measured after it).
+  void feed(SimScan scan);
   int64_t next_event_us() const;  // host time of the next reply or scan, INT64_MAX if none
   bool reboot_requested();        // an RB pair: the program drops the connection, then power_on()
   std::vector<SimTruth> take_truth();
@@ -74,7 +89,11 @@ class SimSensor {
   std::string status_reply(const std::string& echo, const std::string& status, const std::string& body = {});
   std::string kv(const std::string& key, const std::string& value) const;
   double device_ms(int64_t host_us) const;
-  void emit_scan(int64_t first_beam_us);
+  // When the reply of a scan whose requested steps start at `first_beam_us` is ready.
+  int64_t scan_ready_us(int64_t first_beam_us) const;
+  void emit_scan(int64_t first_beam_us, int64_t ready_us, const SimScan* source);
+  bool count_scan_fails(int64_t ready_us);  // the error_after knob; true: the laser failed now
+  void poll_external(int64_t host_us);
 
   SimModel model_;
   SimModel model_after_reboot_;
@@ -96,6 +115,9 @@ class SimSensor {
   int start_ = 0, end_ = 0, cluster_ = 1, skip_ = 0, remaining_ = 0;
   std::string scan_echo_;
   int64_t next_scan_us_ = 0;
+  int64_t streaming_since_us_ = 0;  // when the MD/ME command arrived
+  int64_t rotation_ = 0;            // external scans seen while streaming (for the skip field)
+  std::deque<SimScan> fed_;
   int64_t scans_sent_ = 0;
   int64_t scans_total_ = 0;
   bool error_latched_ = false;

@@ -88,7 +88,7 @@ class Writer {
 
 }  // namespace
 
-int run_sim_server(SimSensor& sensor, const SimServerOptions& o) {
+int run_sim_server(SimSensor& sensor, const SimServerOptions& o, ScanFeed* feed) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
@@ -137,6 +137,7 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o) {
   int connections = 0;
   int64_t connected_at = 0, down_until = 0;
   bool silent = false;
+  bool feed_done = false;
   auto drop = [&](double down_s) {
     if (client >= 0 && !o.pty) {
       close(client);
@@ -162,7 +163,7 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o) {
         continue;
       }
     }
-    pollfd fds[2];
+    pollfd fds[3];
     int n = 0;
     if (listen_fd >= 0) {
       fds[n++] = {listen_fd, POLLIN, 0};
@@ -171,7 +172,11 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o) {
     if (client >= 0) {
       fds[n++] = {client, POLLIN, 0};
     }
-    const int64_t next = sensor.next_event_us();
+    const int feed_index = n;
+    if (feed != nullptr && feed->fd() >= 0) {
+      fds[n++] = {feed->fd(), POLLIN, 0};
+    }
+    const int64_t next = std::min(sensor.next_event_us(), feed != nullptr ? feed->next_due_us() : INT64_MAX);
     int timeout_ms = 20;
     if (next != INT64_MAX) {
       timeout_ms = static_cast<int>(std::clamp<int64_t>((next - now + 999) / 1000, 0, 20));
@@ -201,6 +206,10 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o) {
         client = -1;
       }
     }
+    if (feed != nullptr && !feed_done) {
+      const bool readable = feed_index < n && (fds[feed_index].revents & POLLIN) != 0;
+      feed_done = !feed->pump(sensor, now, readable);
+    }
     const std::string out = sensor.poll(now);
     for (const SimTruth& t : sensor.take_truth()) {
       if (truth) {
@@ -218,6 +227,10 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o) {
     if (sensor.reboot_requested()) {
       drop(o.reboot_down_s);
       sensor.power_on(realtime_us() + static_cast<int64_t>(o.reboot_down_s * 1e6));
+    }
+    if (feed_done && sensor.next_event_us() == INT64_MAX) {
+      std::printf("slamer-urg-sim: the scan source has ended\n");
+      break;
     }
     if (client >= 0 && connections == 1 && o.drop_after_s >= 0 &&
         now - connected_at > static_cast<int64_t>(o.drop_after_s * 1e6)) {

@@ -26,7 +26,18 @@ struct SimServerOptions {
   unsigned seed = 1;
 };
 
-// Runs until the duration ends or a signal; returns the exit code.
-int run_sim_server(SimSensor& sensor, const SimServerOptions& options);
+// Scans from outside (scan_feed.hpp), polled in the server's loop.
+class ScanFeed {
+ public:
+  virtual ~ScanFeed() = default;
+  virtual int fd() const { return -1; }  // readable when scans may have arrived; -1: none
+  // Hands the sensor what has arrived or is due by `host_us`; false once the source has ended.
+  virtual bool pump(SimSensor& sensor, int64_t host_us, bool readable) = 0;
+  virtual int64_t next_due_us() const { return INT64_MAX; }  // host time it needs pumping again
+};
+
+// Runs until the duration ends, a signal, or the feed has ended and its last
+// scan is sent; returns the exit code.
+int run_sim_server(SimSensor& sensor, const SimServerOptions& options, ScanFeed* feed = nullptr);
 
 }  // namespace slamer::urg
