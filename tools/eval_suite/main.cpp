@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
         cli.add_option("localizer-config", "FILE", "slamer-localizer config", config + "/localizer.yaml");
         cli.add_option("jobs", "J", "localizer runs at once", "2");
         cli.add_flag("keep-logs", "keep every world's logs (about 300 MB per 100 s of route)");
+        cli.add_flag("reuse-logs", "score the logs a --keep-logs run left in OUT instead of running again");
       },
       [](const slamer::CommandLine& cli) {
         const int64_t worlds = cli.get_int("worlds");
@@ -45,7 +46,8 @@ int main(int argc, char** argv) {
         setup.localizer_config = cli.get("localizer-config");
         setup.gen_config = cli.has("gen-config") ? cli.get("gen-config") : "";
         setup.jobs = static_cast<int>(jobs);
-        setup.keep_logs = cli.has("keep-logs");
+        setup.keep_logs = cli.has("keep-logs") || cli.has("reuse-logs");
+        setup.reuse_logs = cli.has("reuse-logs");
         const std::string out = cli.get("out");
         std::filesystem::create_directories(out);
         std::ofstream summary(out + "/summary.txt");

@@ -18,6 +18,7 @@ struct SuiteSetup {
   std::string gen_config;  // "" = the generator's defaults
   int jobs = 2;            // localizer runs at once
   bool keep_logs = false;
+  bool reuse_logs = false;  // score the logs a kept earlier run left instead of running again
 };
 
 // Runs everything in `directory`; throws std::runtime_error naming the step that failed.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tools/eval/report.hpp"
+#include "tools/eval_suite/door_scores.hpp"
 #include "tools/worldgen/world_files.hpp"
 
 namespace slamer {
@@ -24,6 +25,7 @@ struct WorldResult {
   uint64_t seed = 0;
   MapDifferences differences;
   std::vector<NamedRun> runs;  // lfm, slfm, slamer in this order
+  DoorScores doors;            // the doors that differ from the map, in the SLAMER run
 };
 
 std::string render_world(const WorldResult& world, const EvalOptions& options);
