@@ -15,14 +15,14 @@ void DoorScores::merge(const DoorScores& o) {
 
 DoorScores score_differing_doors(const RunInputs& run, const TrueWorld& truth_world, const TrueWorld& map_world,
                                  const Pose2& lidar_mount, const EvalOptions& options,
-                                 const MapDifferences& differences, double range) {
+                                 const MapDifferences& differences, bool changing, double range) {
   DoorScores scores;
   if (run.truth.empty()) {
     return scores;
   }
   std::vector<const MapDifferences::Door*> doors;
   for (const MapDifferences::Door& d : differences.doors) {
-    if (d.differs()) {
+    if (changing ? !d.changes.empty() : d.changes.empty() && d.map_state != d.truth_state) {
       doors.push_back(&d);
     }
   }
@@ -54,7 +54,8 @@ DoorScores score_differing_doors(const RunInputs& run, const TrueWorld& truth_wo
       const Eigen::Vector2d b = transform_point(sensor, set.objects[i].end);
       for (std::size_t d = 0; d < doors.size(); ++d) {
         const MapDifferences::Door& door = *doors[d];
-        if ((door.center - Eigen::Vector2d(sensor.x, sensor.y)).norm() > range ||
+        if ((!door.changes.empty() && time < door.changes.front().first) ||
+            (door.center - Eigen::Vector2d(sensor.x, sensor.y)).norm() > range ||
             ((a + b) / 2.0 - door.center).norm() > door.width / 2.0 + 0.3) {
           continue;
         }

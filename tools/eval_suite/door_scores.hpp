@@ -3,8 +3,9 @@
 // every recognized object whose middle lies on such a door (within half its
 // width + 0.3 m of its centre, at the true pose) in a scan taken within
 // `range` of it, scored for the recognizer, the map-based method and SLAMER
-// against the door's true class at that time. Doors that change during the
-// run count from the start.
+// against the door's true class at that time. `changing` picks the doors that
+// change during the run (from their first change on, when they differ from
+// the map), else those in another state than the map throughout.
 #pragma once
 
 #include "tools/eval/evaluation.hpp"
@@ -21,6 +22,6 @@ struct DoorScores {
 
 DoorScores score_differing_doors(const RunInputs& run, const TrueWorld& truth_world, const TrueWorld& map_world,
                                  const Pose2& lidar_mount, const EvalOptions& options,
-                                 const MapDifferences& differences, double range = 5.0);
+                                 const MapDifferences& differences, bool changing, double range = 5.0);
 
 }  // namespace slamer

@@ -92,7 +92,10 @@ WorldResult run_world(const SuiteSetup& setup, const EvalConfig& eval, uint64_t 
     const RunInputs inputs = read_run(log, eval.channels, eval.channels.pose);
     result.runs.push_back({mode + ".lcm", score_run(inputs, truth, mapped, robot.lidar.mount, eval.eval)});
     if (mode == "slamer") {
-      result.doors = score_differing_doors(inputs, truth, mapped, robot.lidar.mount, eval.eval, result.differences);
+      result.doors =
+          score_differing_doors(inputs, truth, mapped, robot.lidar.mount, eval.eval, result.differences, false);
+      result.changing_doors =
+          score_differing_doors(inputs, truth, mapped, robot.lidar.mount, eval.eval, result.differences, true);
     }
     if (!setup.keep_logs) {
       std::filesystem::remove(log);

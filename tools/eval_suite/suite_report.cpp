@@ -69,14 +69,17 @@ const std::vector<Column>& columns() {
   return kColumns;
 }
 
-std::string doors_text(const DoorScores& d) {
+constexpr const char* kOther = "in another state than the map";
+constexpr const char* kChanging = "changing during the run";
+
+std::string doors_text(const DoorScores& d, const std::string& which) {
   if (d.objects == 0) {
-    return "no object on a door that differs from the map";
+    return "no object on a door " + which;
   }
   const auto share = [&](int64_t right) { return cell("%.1f %%", 100.0 * static_cast<double>(right) / d.objects); };
-  return std::to_string(d.objects) + " objects on " + std::to_string(d.doors_seen) +
-         " doors that differ from the map, seen within 5 m: right by the recognizer " + share(d.recognizer) +
-         ", map-based " + share(d.map_based) + ", SLAMER " + share(d.slamer);
+  return std::to_string(d.objects) + " objects on " + std::to_string(d.doors_seen) + " doors " + which +
+         ", seen within 5 m: right by the recognizer " + share(d.recognizer) + ", map-based " + share(d.map_based) +
+         ", SLAMER " + share(d.slamer);
 }
 
 std::string confusion_text(const std::string& title, const Confusion& c, const EvalOptions& options) {
@@ -126,7 +129,8 @@ std::string render_world(const WorldResult& world, const EvalOptions& options) {
   out << "=== world " << world.seed << ": " << world.differences.doors.size() << " doors (" << differ
       << " in another state than the map, " << change << " changing during the run), " << world.differences.added
       << " objects added, " << world.differences.removed << " removed\n"
-      << render_table(world.runs, options) << doors_text(world.doors) << "\n";
+      << render_table(world.runs, options) << doors_text(world.doors, kOther) << "\n"
+      << doors_text(world.changing_doors, kChanging) << "\n";
   return out.str();
 }
 
@@ -181,11 +185,13 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
       above_recognizer += s.slamer.mean >= s.recognizer.mean + 0.05 ? 1 : 0;
     }
   }
-  DoorScores doors;
+  DoorScores doors, changing;
   for (const WorldResult& w : worlds) {
     doors.merge(w.doors);
+    changing.merge(w.changing_doors);
   }
-  out << "All worlds: " << doors_text(doors) << "\n";
+  out << "All worlds: " << doors_text(doors, kOther) << "\n"
+      << "All worlds: " << doors_text(changing, kChanging) << "\n";
   out << "SLAMER ER Acc >= map-based + 1 point on " << above_map << " of " << counted << " worlds, >= recognizer + 5 "
       << "points on " << above_recognizer << "\n\n";
   Confusion recognizer, map_based, slamer;

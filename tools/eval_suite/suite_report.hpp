@@ -25,7 +25,8 @@ struct WorldResult {
   uint64_t seed = 0;
   MapDifferences differences;
   std::vector<NamedRun> runs;  // lfm, slfm, slamer in this order
-  DoorScores doors;            // the doors that differ from the map, in the SLAMER run
+  DoorScores doors;            // the doors in another state than the map, in the SLAMER run
+  DoorScores changing_doors;   // the doors that change during the run
 };
 
 std::string render_world(const WorldResult& world, const EvalOptions& options);
