@@ -135,6 +135,19 @@ TEST(ScoreRun, ThreeMethodsAgainstTheTruth) {
   EXPECT_DOUBLE_EQ(scores.slamer.mean, 1.0);
   EXPECT_EQ(scores.pose.samples, 2u);
   EXPECT_DOUBLE_EQ(scores.pose.position_max, 0.0);
+  // Where the map differs (the door, in both scans): recognizer 1/1 then 0/1, the map never, SLAMER always.
+  EXPECT_EQ(scores.recognizer_differs.scans, 2u);
+  EXPECT_DOUBLE_EQ(scores.recognizer_differs.mean, 0.5);
+  EXPECT_DOUBLE_EQ(scores.map_based_differs.mean, 0.0);
+  EXPECT_DOUBLE_EQ(scores.slamer_differs.mean, 1.0);
+  // Confusion rows: open_door (0) and fence (4); columns as predicted.
+  EXPECT_EQ(scores.recognizer_confusion.counts[0][0], 1);
+  EXPECT_EQ(scores.recognizer_confusion.counts[0][1], 1);
+  EXPECT_EQ(scores.recognizer_confusion.counts[4][4], 1);
+  EXPECT_EQ(scores.map_based_confusion.counts[0][1], 2);
+  EXPECT_EQ(scores.map_based_confusion.counts[4][4], 1);
+  EXPECT_EQ(scores.slamer_confusion.counts[0][0], 2);
+  EXPECT_EQ(scores.slamer_confusion.counts[1][1], 0);
 
   const std::string table = render_table({{"run.lcm", scores}}, eval);
   EXPECT_NE(table.find("50.00 %"), std::string::npos) << table;

@@ -190,6 +190,30 @@ int ObjectLabeler::label(const Eigen::Vector2d& start, const Eigen::Vector2d& en
   return best;
 }
 
+void Confusion::add(int truth, int predicted, std::size_t classes) {
+  if (counts.empty()) {
+    counts.assign(classes, std::vector<int64_t>(classes + 1, 0));
+  }
+  if (truth < 0 || static_cast<std::size_t>(truth) >= classes) {
+    return;
+  }
+  const std::size_t column =
+      predicted >= 0 && static_cast<std::size_t>(predicted) < classes ? static_cast<std::size_t>(predicted) : classes;
+  ++counts[static_cast<std::size_t>(truth)][column];
+}
+
+void Confusion::merge(const Confusion& other) {
+  if (counts.empty()) {
+    counts = other.counts;
+    return;
+  }
+  for (std::size_t r = 0; r < other.counts.size() && r < counts.size(); ++r) {
+    for (std::size_t c = 0; c < other.counts[r].size() && c < counts[r].size(); ++c) {
+      counts[r][c] += other.counts[r][c];
+    }
+  }
+}
+
 RunScores score_run(const RunInputs& run, const TrueWorld& truth_world, const TrueWorld& map_world,
                     const Pose2& lidar_mount, const EvalOptions& options) {
   RunScores scores;
@@ -208,6 +232,15 @@ RunScores score_run(const RunInputs& run, const TrueWorld& truth_world, const Tr
   std::vector<std::pair<int, int>> recognizer;
   std::vector<std::pair<int, int>> map_based;
   std::vector<std::pair<int, int>> slamer;
+  std::vector<std::pair<int, int>> recognizer_differs;
+  std::vector<std::pair<int, int>> map_differs;
+  std::vector<std::pair<int, int>> slamer_differs;
+  const std::size_t classes = options.classes.size();
+  const auto class_of = [&](const LineObjectSet& s, int index) {
+    return index >= 0 && static_cast<std::size_t>(index) < s.class_names.size()
+               ? options.class_index(s.class_names[static_cast<std::size_t>(index)])
+               : -2;  // no label: never right
+  };
   for (const LineObjectSet& set : run.recognized) {
     const std::optional<Pose2> true_pose = pose_at(run.truth, set.utime);
     if (!true_pose || set.objects.empty()) {
@@ -222,29 +255,40 @@ RunScores score_run(const RunInputs& run, const TrueWorld& truth_world, const Tr
     int correct_recognizer = 0;
     int correct_map = 0;
     int correct_slamer = 0;
+    int differing = 0, differing_recognizer = 0, differing_map = 0, differing_slamer = 0;
     for (std::size_t i = 0; i < set.objects.size(); ++i) {
       const LineObject& object = set.objects[i];
-      const int truth = truth_labeler.label(transform_point(true_sensor, object.start),
-                                            transform_point(true_sensor, object.end), time);
-      const int predicted = most_likely(object.probs);
-      if (predicted >= 0 && static_cast<std::size_t>(predicted) < set.class_names.size() &&
-          options.class_index(set.class_names[static_cast<std::size_t>(predicted)]) == truth) {
-        ++correct_recognizer;
-      }
+      const Eigen::Vector2d true_start = transform_point(true_sensor, object.start);
+      const Eigen::Vector2d true_end = transform_point(true_sensor, object.end);
+      const int truth = truth_labeler.label(true_start, true_end, time);
+      const bool differs = map_labeler.label(true_start, true_end, time) != truth;
+      differing += differs ? 1 : 0;
+      const int predicted = class_of(set, most_likely(object.probs));
+      scores.recognizer_confusion.add(truth, predicted, classes);
+      correct_recognizer += predicted == truth ? 1 : 0;
+      differing_recognizer += differs && predicted == truth ? 1 : 0;
       if (estimate) {
         const Pose2 sensor = compose(*estimate, lidar_mount);
-        correct_map +=
-            map_labeler.label(transform_point(sensor, object.start), transform_point(sensor, object.end), time) == truth
-                ? 1
-                : 0;
+        const int mapped =
+            map_labeler.label(transform_point(sensor, object.start), transform_point(sensor, object.end), time);
+        scores.map_based_confusion.add(truth, mapped, classes);
+        correct_map += mapped == truth ? 1 : 0;
+        differing_map += differs && mapped == truth ? 1 : 0;
       }
       if (have_semantic) {
-        const LineObjectSet& s = *semantic->second;
-        const int label = s.objects[i].label;
-        if (label >= 0 && static_cast<std::size_t>(label) < s.class_names.size() &&
-            options.class_index(s.class_names[static_cast<std::size_t>(label)]) == truth) {
-          ++correct_slamer;
-        }
+        const int label = class_of(*semantic->second, semantic->second->objects[i].label);
+        scores.slamer_confusion.add(truth, label, classes);
+        correct_slamer += label == truth ? 1 : 0;
+        differing_slamer += differs && label == truth ? 1 : 0;
+      }
+    }
+    if (differing > 0) {
+      recognizer_differs.emplace_back(differing_recognizer, differing);
+      if (estimate) {
+        map_differs.emplace_back(differing_map, differing);
+      }
+      if (have_semantic) {
+        slamer_differs.emplace_back(differing_slamer, differing);
       }
     }
     const int total = static_cast<int>(set.objects.size());
@@ -259,6 +303,9 @@ RunScores score_run(const RunInputs& run, const TrueWorld& truth_world, const Tr
   scores.recognizer = accuracy(recognizer);
   scores.map_based = accuracy(map_based);
   scores.slamer = accuracy(slamer);
+  scores.recognizer_differs = accuracy(recognizer_differs);
+  scores.map_based_differs = accuracy(map_differs);
+  scores.slamer_differs = accuracy(slamer_differs);
   return scores;
 }
 

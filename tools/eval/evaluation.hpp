@@ -95,12 +95,29 @@ struct RunInputs {
   std::vector<LineObjectSet> semantic;    // SEMANTIC_OBJECTS, map frame, same order as `recognized`
 };
 
+// Objects counted by true class (row) and predicted class (column), both
+// indices into EvalOptions::classes; the last column is a prediction outside
+// them (a class the evaluation does not know, or no label).
+struct Confusion {
+  std::vector<std::vector<int64_t>> counts;
+  void add(int truth, int predicted, std::size_t classes);
+  void merge(const Confusion& other);
+};
+
 struct RunScores {
   std::vector<PoseError> errors;
   PoseErrorStats pose;
   AccuracyStats recognizer;
   AccuracyStats map_based;
   AccuracyStats slamer;
+  // The same accuracies over only the objects where the truth's class (at the
+  // true pose) differs from the map's: doors opened or closed, objects added or removed.
+  AccuracyStats recognizer_differs;
+  AccuracyStats map_based_differs;
+  AccuracyStats slamer_differs;
+  Confusion recognizer_confusion;
+  Confusion map_based_confusion;
+  Confusion slamer_confusion;
 };
 
 // `truth_world` is the simulation's world; `map_world` the same map with no

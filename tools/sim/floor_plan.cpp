@@ -7,7 +7,21 @@
 #include <stdexcept>
 
 namespace slamer {
-namespace {}  // namespace
+namespace {
+
+bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& polygon) {
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+}  // namespace
 
 void read_options(const ConfigReader& reader, FloorPlan* plan) {
   reader.read("resolution", &plan->resolution, positive());
@@ -19,6 +33,19 @@ void read_options(const ConfigReader& reader, FloorPlan* plan) {
   plan->origin = {origin[0], origin[1]};
   reader.read("unknown_background", &plan->unknown_background);
   for (const ConfigReader& area : reader.list("free_areas")) {
+    if (area.has("polygon")) {  // [x0, y0, x1, y1, ...], at least three corners
+      std::vector<double> flat;
+      area.read("polygon", &flat);
+      if (flat.size() < 6 || flat.size() % 2 != 0) {
+        area.fail("polygon", "expected a flat list x0, y0, x1, y1, ... of at least three corners");
+      }
+      std::vector<Eigen::Vector2d> polygon;
+      for (std::size_t i = 0; i < flat.size(); i += 2) {
+        polygon.emplace_back(flat[i], flat[i + 1]);
+      }
+      plan->free_polygons.push_back(polygon);
+      continue;
+    }
     std::vector<double> box;
     area.require("box");
     area.read("box", &box, {}, 4);
@@ -76,6 +103,16 @@ void write_floor_plan_map(const FloorPlan& plan, const std::string& directory) {
       for (int col = 0; col < width; ++col) {
         const Eigen::Vector2d p = center(col, row);
         if (p.x() >= box[0] && p.x() <= box[2] && p.y() >= box[1] && p.y() <= box[3]) {
+          occupancy.at<uint8_t>(row, col) = 254;
+          semantic.at<cv::Vec3b>(row, col) = {254, 254, 254};
+        }
+      }
+    }
+  }
+  for (const auto& polygon : plan.free_polygons) {
+    for (int row = 0; row < height; ++row) {
+      for (int col = 0; col < width; ++col) {
+        if (inside_polygon(center(col, row), polygon)) {
           occupancy.at<uint8_t>(row, col) = 254;
           semantic.at<cv::Vec3b>(row, col) = {254, 254, 254};
         }

@@ -28,10 +28,11 @@ struct PlanShape {
 
 struct FloorPlan {
   double resolution = 0.05;
-  Eigen::Vector2d size{10.0, 10.0};               // [m]
-  Eigen::Vector2d origin{0.0, 0.0};               // world position of the image's bottom-left corner
-  bool unknown_background = true;                 // outside free_areas is unknown (205) rather than free
-  std::vector<std::array<double, 4>> free_areas;  // [x0, y0, x1, y1] rectangles of known free space
+  Eigen::Vector2d size{10.0, 10.0};                         // [m]
+  Eigen::Vector2d origin{0.0, 0.0};                         // world position of the image's bottom-left corner
+  bool unknown_background = true;                           // outside free_areas is unknown (205) rather than free
+  std::vector<std::array<double, 4>> free_areas;            // [x0, y0, x1, y1] rectangles of known free space
+  std::vector<std::vector<Eigen::Vector2d>> free_polygons;  // more known free space, any shape
   std::vector<PlanClass> classes;
   std::vector<PlanShape> shapes;
 };

@@ -45,7 +45,8 @@ Simulator::Simulator(const TrueWorld& world, const WorldOptions& world_options, 
       step_us_(std::max<int64_t>(to_us(options.step), 1)),
       encoder_us_(std::max<int64_t>(to_us(options.encoder_period), 1)),
       scan_us_(std::max<int64_t>(to_us(robot.lidar.scan_period), 1)),
-      pose_(world_options.start) {
+      pose_(world_options.start),
+      intensity_model_(world_options.intensity) {
   // Independent streams, so changing one sensor's noise leaves the other's draws as they were.
   std::seed_seq lidar_seed{seed, uint64_t{1}};
   std::seed_seq odometry_seed{seed, uint64_t{2}};
@@ -91,11 +92,18 @@ LaserScan Simulator::make_scan(int64_t start_us) {
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   const Pose2 start_sensor = compose(pose_at(start_us), lidar.mount);
   const double time = static_cast<double>(start_us) * 1e-6;
+  const bool intensities = world_.has_intensities();
+  const IntensityModel& model = intensity_model_;
+  std::normal_distribution<double> unit(0.0, 1.0);
+  if (intensities) {
+    scan.intensities.assign(scan.ranges.size(), 0.0f);
+  }
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    float reflectance = 0.0f;
     const Pose2 sensor =
         options_.motion_distortion ? compose(pose_at(start_us + to_us(scan.beam_time(i))), lidar.mount) : start_sensor;
-    const double distance =
-        world_.cast({sensor.x, sensor.y}, sensor.theta + scan.angle(i), lidar.range_max + 1.0, time, lidar_rng_);
+    const double distance = world_.cast({sensor.x, sensor.y}, sensor.theta + scan.angle(i), lidar.range_max + 1.0, time,
+                                        lidar_rng_, intensities ? &reflectance : nullptr);
     const double measured = distance + (options_.range_stddev > 0.0 ? noise(lidar_rng_) : 0.0);
     const bool dropout = uniform(lidar_rng_) < options_.dropout_probability;
     float range = std::numeric_limits<float>::infinity();
@@ -105,6 +113,11 @@ LaserScan Simulator::make_scan(int64_t start_us) {
       range = measured < lidar.range_min ? -std::numeric_limits<float>::infinity() : static_cast<float>(measured);
     }
     scan.ranges[i] = range;
+    if (intensities && std::isfinite(range)) {  // the URG reports 0 where nothing returned
+      const double value = model.scale * reflectance / (1.0 + range / model.falloff) *
+                           (1.0 + (model.noise > 0.0 ? model.noise * unit(lidar_rng_) : 0.0));
+      scan.intensities[i] = static_cast<float>(std::max(0.0, value));
+    }
   }
   return scan;
 }

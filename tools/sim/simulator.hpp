@@ -4,7 +4,9 @@
 // occasional bumps (wheel_slip.hpp), so dead reckoning drifts as on a real
 // robot), odometry integrated from those ticks, and a scanning LiDAR whose
 // every beam is cast from where the sensor is at that beam's time (motion
-// distortion), with range noise, dropouts, and the classes' partial returns.
+// distortion), with range noise, dropouts, and the classes' partial returns;
+// intensities (scale * reflectance / (1 + r / falloff), with noise) where the
+// world gives its classes a reflectance.
 //
 // Time is kept in integer microseconds from 0; outputs carry start_utime +
 // that. Randomness comes only from the seed, so a seed gives the same run.
@@ -109,6 +111,7 @@ class Simulator {
   int64_t encoder_seq_ = 0;
   int64_t scan_seq_ = 0;
   int64_t next_scan_us_ = 0;
+  IntensityModel intensity_model_;
 };
 
 }  // namespace slamer

@@ -24,6 +24,26 @@ DoorState read_door_state(const ConfigReader& reader, std::string_view key) {
   return state == "open" ? DoorState::kOpen : DoorState::kClosed;
 }
 
+// Calls paint(index) for every cell within thickness / 2 of the segment from-to.
+template <class Paint>
+void for_cells_along(const GridGeometry& g, const Eigen::Vector2d& from, const Eigen::Vector2d& to, double thickness,
+                     Paint paint) {
+  const Eigen::Vector2d a = g.to_grid(from);
+  const Eigen::Vector2d b = g.to_grid(to);
+  const double half = thickness / 2.0 / g.resolution;
+  const int x0 = static_cast<int>(std::floor(std::min(a.x(), b.x()) - half));
+  const int x1 = static_cast<int>(std::ceil(std::max(a.x(), b.x()) + half));
+  const int y0 = static_cast<int>(std::floor(std::min(a.y(), b.y()) - half));
+  const int y1 = static_cast<int>(std::ceil(std::max(a.y(), b.y()) + half));
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      if (g.contains(x, y) && distance_to_segment({x + 0.5, y + 0.5}, a, b) <= half) {
+        paint(g.index(x, y));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void read_options(const ConfigReader& reader, WorldOptions* o) {
@@ -94,6 +114,23 @@ void read_options(const ConfigReader& reader, WorldOptions* o) {
     object_reader.read("thickness", &object.thickness, positive());
     o->objects.push_back(object);
   }
+  for (const ConfigReader& area_reader : truth.list("removed")) {
+    TruthArea area;
+    area.from = read_point(area_reader, "from");
+    area.to = read_point(area_reader, "to");
+    area_reader.read("thickness", &area.thickness, positive());
+    o->removed.push_back(area);
+  }
+  const ConfigReader reflectance = reader.section("reflectance");
+  for (const std::string& name : reflectance.keys()) {
+    double value = 0.0;
+    reflectance.read(name, &value, in_range(0.0, 1.0));
+    o->reflectance[name] = value;
+  }
+  const ConfigReader intensity = reader.section("intensity");
+  intensity.read("scale", &o->intensity.scale, positive());
+  intensity.read("falloff", &o->intensity.falloff, positive());
+  intensity.read("noise", &o->intensity.noise, in_range(0.0, 1.0));
 }
 
 TrueWorld::TrueWorld(SemanticMap map, const WorldOptions& options, const std::string& world_file)
@@ -205,22 +242,35 @@ TrueWorld::TrueWorld(SemanticMap map, const WorldOptions& options, const std::st
       throw ConfigError(world_file + ": truth.objects[" + std::to_string(i) + "]: class '" + object.class_name +
                         "' is not in the map's class table");
     }
-    const Eigen::Vector2d a = g.to_grid(object.from);
-    const Eigen::Vector2d b = g.to_grid(object.to);
-    const double half = object.thickness / 2.0 / g.resolution;
-    const int x0 = static_cast<int>(std::floor(std::min(a.x(), b.x()) - half));
-    const int x1 = static_cast<int>(std::ceil(std::max(a.x(), b.x()) + half));
-    const int y0 = static_cast<int>(std::floor(std::min(a.y(), b.y()) - half));
-    const int y1 = static_cast<int>(std::ceil(std::max(a.y(), b.y()) + half));
-    for (int y = y0; y <= y1; ++y) {
-      for (int x = x0; x <= x1; ++x) {
-        if (g.contains(x, y) && distance_to_segment({x + 0.5, y + 0.5}, a, b) <= half) {
-          const std::size_t index = g.index(x, y);
-          return_probability_[index] = class_return[static_cast<std::size_t>(label)];
-          object_of_cell_[index] = kTruthObjectBase + static_cast<int32_t>(i);
-          door_of_cell_[index] = -1;
-          truth_labels_[index] = static_cast<int8_t>(label);
-        }
+    for_cells_along(g, object.from, object.to, object.thickness, [&](std::size_t index) {
+      return_probability_[index] = class_return[static_cast<std::size_t>(label)];
+      object_of_cell_[index] = kTruthObjectBase + static_cast<int32_t>(i);
+      door_of_cell_[index] = -1;
+      truth_labels_[index] = static_cast<int8_t>(label);
+    });
+  }
+  // Objects of the map that the true world no longer has.
+  for (const TruthArea& area : options.removed) {
+    for_cells_along(g, area.from, area.to, area.thickness, [&](std::size_t index) {
+      return_probability_[index] = 0.0f;
+      object_of_cell_[index] = -1;
+      door_of_cell_[index] = -1;
+      truth_labels_[index] = -1;
+    });
+  }
+  // Reflectance per cell of what the true world has there.
+  if (!options.reflectance.empty()) {
+    std::vector<float> class_reflectance(map_.classes.size(), 0.5f);
+    const auto others = options.reflectance.find("others");
+    const float unlabelled = others != options.reflectance.end() ? static_cast<float>(others->second) : 0.5f;
+    for (std::size_t c = 0; c < map_.classes.size(); ++c) {
+      const auto it = options.reflectance.find(map_.classes[c].name);
+      class_reflectance[c] = it != options.reflectance.end() ? static_cast<float>(it->second) : unlabelled;
+    }
+    reflectance_.assign(cells, unlabelled);
+    for (std::size_t i = 0; i < cells; ++i) {
+      if (truth_labels_[i] >= 0) {
+        reflectance_[i] = class_reflectance[static_cast<std::size_t>(truth_labels_[i])];
       }
     }
   }
@@ -242,8 +292,8 @@ int TrueWorld::door_at(const Eigen::Vector2d& world) const {
   return cell ? door_of_cell_[map_.geometry.index(cell->x, cell->y)] : -1;
 }
 
-double TrueWorld::cast(const Eigen::Vector2d& origin, double angle, double max_range, double time,
-                       std::mt19937& rng) const {
+double TrueWorld::cast(const Eigen::Vector2d& origin, double angle, double max_range, double time, std::mt19937& rng,
+                       float* reflectance) const {
   const GridGeometry& g = map_.geometry;
   const Eigen::Vector2d start = g.to_grid(origin);
   const double grid_angle = angle - g.origin.theta;
@@ -277,6 +327,9 @@ double TrueWorld::cast(const Eigen::Vector2d& origin, double angle, double max_r
             door_state(door, time) == DoorState::kClosed ? door_return_[static_cast<std::size_t>(door)] : 0.0f;
       }
       if (probability >= 1.0f || (probability > 0.0f && uniform(rng) < probability)) {
+        if (reflectance != nullptr) {
+          *reflectance = reflectance_.empty() ? 0.0f : reflectance_[index];
+        }
         return t * g.resolution;
       }
     }

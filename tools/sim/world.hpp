@@ -9,6 +9,9 @@
 // fraction, no-entry lines 0), drawn once per object crossed, not per cell.
 // Cells of a door class belong to a door instance (a connected component);
 // an open door returns nothing. Unlabelled occupied cells always return.
+// A truth area (`truth.removed`) clears the map's cells under it: an object
+// the map shows that is no longer there. With `reflectance` set, a beam that
+// returns also carries the reflectance of the class it hit (intensities).
 #pragma once
 
 #include <Eigen/Core>
@@ -39,6 +42,20 @@ struct TruthObject {  // an object of the true world that the map does not have
   double thickness = 0.1;  // [m]
 };
 
+struct TruthArea {  // a stretch of the map that the true world does not have (an object removed)
+  Eigen::Vector2d from{0.0, 0.0};
+  Eigen::Vector2d to{0.0, 0.0};
+  double thickness = 0.1;  // [m]
+};
+
+// Laser intensity of a return: scale * reflectance / (1 + range / falloff),
+// times (1 + noise * N(0, 1)); device units like the URG's.
+struct IntensityModel {
+  double scale = 10000.0;
+  double falloff = 5.0;  // [m]
+  double noise = 0.02;
+};
+
 struct PathStep {
   enum class Kind { kGoTo, kTurnTo, kWait };
   Kind kind = Kind::kGoTo;
@@ -59,6 +76,10 @@ struct WorldOptions {
   double door_snap_distance = 0.5;  // [m]
   std::vector<DoorTruth> doors;
   std::vector<TruthObject> objects;
+  std::vector<TruthArea> removed;
+  // Per class (unlabelled occupied cells: "others"); empty = no intensities.
+  std::map<std::string, double> reflectance;
+  IntensityModel intensity;
 };
 void read_options(const ConfigReader& reader, WorldOptions* options);
 
@@ -77,7 +98,10 @@ class TrueWorld {
 
   // Range [m] along a ray from `origin` with direction `angle`, up to
   // max_range; +inf when nothing returns. `rng` draws the partial returns.
-  double cast(const Eigen::Vector2d& origin, double angle, double max_range, double time, std::mt19937& rng) const;
+  // `reflectance` (if given) receives the reflectance of what returned.
+  double cast(const Eigen::Vector2d& origin, double angle, double max_range, double time, std::mt19937& rng,
+              float* reflectance = nullptr) const;
+  bool has_intensities() const { return !reflectance_.empty(); }
 
   // The true class of the world at a point (for evaluation): the class of
   // the nearest labelled cell within `radius`, -1 if none; `door` (if given)
@@ -92,6 +116,7 @@ class TrueWorld {
   std::vector<DoorTruth> door_truth_;      // per door instance, state always set
   std::vector<int32_t> object_of_cell_;    // per cell: an id for "same object" (class or door run)
   std::vector<int8_t> truth_labels_;       // map labels plus the truth objects
+  std::vector<float> reflectance_;         // per cell; empty without intensities
 };
 
 }  // namespace slamer

@@ -1,0 +1,71 @@
+// slamer-eval-suite's pieces: test seeds never meet training seeds, confusion
+// matrices add up, the summary's mean and worst are those of the worlds.
+#include <gtest/gtest.h>
+
+#include "tools/eval_suite/suite_report.hpp"
+
+namespace slamer {
+namespace {
+
+TEST(EvalSuite, TestSeedsAreDisjointFromTrainingSeeds) {
+  EXPECT_EQ(test_world_seed(1, 0), 101000u);
+  EXPECT_EQ(test_world_seed(0, 2), 100002u);
+  for (const uint64_t s : {0u, 1u, 2u, 77u}) {
+    for (const int k : {0, 999}) {
+      EXPECT_GE(test_world_seed(s, k), kTrainingSeedsEnd);
+    }
+  }
+  EXPECT_NE(test_world_seed(1, 999), test_world_seed(2, 0));
+}
+
+TEST(EvalSuite, ConfusionCountsAndMerges) {
+  Confusion a;
+  a.add(0, 0, 3);
+  a.add(0, 2, 3);
+  a.add(1, -2, 3);  // no label: the last column
+  a.add(-1, 0, 3);  // no truth: not counted
+  ASSERT_EQ(a.counts.size(), 3u);
+  EXPECT_EQ(a.counts[0], (std::vector<int64_t>{1, 0, 1, 0}));
+  EXPECT_EQ(a.counts[1], (std::vector<int64_t>{0, 0, 0, 1}));
+  Confusion b;
+  b.merge(a);
+  b.merge(a);
+  EXPECT_EQ(b.counts[0][2], 2);
+  EXPECT_EQ(b.counts[1][3], 2);
+}
+
+WorldResult world(uint64_t seed, double lfm_cm, double slamer_cm, double recognizer, double map, double slamer) {
+  WorldResult w;
+  w.seed = seed;
+  for (const std::string mode : {"lfm", "slfm", "slamer"}) {
+    RunScores s;
+    s.pose.samples = 10;
+    s.pose.position_mean = (mode == "slamer" ? slamer_cm : lfm_cm) / 100.0;
+    s.recognizer = {10, 50, recognizer};
+    s.map_based = {10, 50, map};
+    s.slamer = {10, 50, slamer};
+    s.slamer_confusion.add(1, 1, 2);
+    w.runs.push_back({mode + ".lcm", s});
+  }
+  return w;
+}
+
+TEST(EvalSuite, SummaryHasTheMeanAndTheWorst) {
+  EvalOptions options;
+  options.classes = {{"a", "", std::nullopt}, {"b", "", std::nullopt}};
+  const std::string text =
+      render_summary({world(5, 4.0, 3.0, 0.80, 0.90, 0.95), world(6, 8.0, 5.0, 0.70, 0.96, 0.92)}, options);
+  // LFM, SLFM, SLAMER cm, lost x2, ER recognizer / map / SLAMER, differs x3 (n/a).
+  EXPECT_NE(text.find("mean          6.00      6.00      4.00      0.00      0.00     75.00     93.00     93.50"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("worst         8.00      8.00      5.00      0.00      0.00     70.00     90.00     92.00"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("map-based + 1 point on 1 of 2 worlds, >= recognizer + 5 points on 2"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("b                      0.0   100.0     0.0  2"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace slamer

@@ -1,0 +1,47 @@
+// slamer-eval-suite as a program: 3 generated test worlds with short routes
+// through the whole offline pipeline, the tables and matrices printed.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "test/support/child_process.hpp"
+
+namespace slamer {
+namespace {
+
+TEST(SlamerEvalSuite, ThreeShortWorlds) {
+  const std::string dir = std::string(SLAMER_BINARY_DIR) + "/eval_suite_process_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/short.yaml") << "corridor: {length_min: 14, length_max: 20}\n"
+                                     << "route: {rooms_min: 1, rooms_max: 1, corridor_fraction: 0.3}\n";
+  test::ChildProcess suite(test::binary_path("slamer-eval-suite"),
+                           {"--worlds", "3", "--seed", "0", "--out", dir + "/out", "--gen-config", dir + "/short.yaml",
+                            "--jobs", "3", "--config", std::string(SLAMER_SOURCE_DIR) + "/config/eval.yaml"});
+  ASSERT_EQ(suite.wait(170.0).value_or(-1), 0) << suite.stderr_text();
+  const std::string out = suite.stdout_text();
+  for (const std::string world : {"100000", "100001", "100002"}) {
+    EXPECT_NE(out.find("=== world " + world + ":"), std::string::npos) << out;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/out/world_" + world + "/world/differences.yaml"));
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out/world_" + world + "/sim.lcm")) << "logs are not kept";
+  }
+  EXPECT_NE(out.find("Pose error [cm / deg]  Ave"), std::string::npos);
+  for (const std::string title : {"Recognizer (rows", "Map-based (SLAMER's pose) (rows", "SLAMER (rows"}) {
+    EXPECT_NE(out.find(title), std::string::npos) << title;
+  }
+  // The mean row: SLAMER's pose error tracks (under 30 cm) and its ER Acc is a percentage.
+  std::smatch mean;
+  ASSERT_TRUE(std::regex_search(out, mean,
+                                std::regex(R"(\nmean +([0-9.]+) +([0-9.]+) +([0-9.]+) +([0-9.]+) +)"
+                                           R"(([0-9.]+) +([0-9.]+) +([0-9.]+) +([0-9.]+))")))
+      << out;
+  EXPECT_LT(std::stod(mean[3]), 30.0);
+  EXPECT_GT(std::stod(mean[8]), 50.0);
+  EXPECT_LE(std::stod(mean[8]), 100.0);
+  EXPECT_EQ(test::read_file(dir + "/out/summary.txt"), out);
+}
+
+}  // namespace
+}  // namespace slamer

@@ -1,0 +1,27 @@
+// One test world of slamer-eval-suite through the offline pipeline, with the
+// stack's own programs: slamer-gen-world, slamer-sim (realistic odometry from
+// the sim config), slamer-recognizer --replay, slamer-localizer --replay in
+// lfm, slfm and slamer modes from the world's start, then scored with the
+// slamer-eval library against the world's truth and its map.
+#pragma once
+
+#include <string>
+
+#include "tools/eval/eval_config.hpp"
+#include "tools/eval_suite/suite_report.hpp"
+
+namespace slamer {
+
+struct SuiteSetup {
+  std::string bin_dir;  // where the programs are
+  std::string sim_config, recognizer_config, localizer_config;
+  std::string gen_config;  // "" = the generator's defaults
+  int jobs = 2;            // localizer runs at once
+  bool keep_logs = false;
+  bool reuse_logs = false;  // score the logs a kept earlier run left instead of running again
+};
+
+// Runs everything in `directory`; throws std::runtime_error naming the step that failed.
+WorldResult run_world(const SuiteSetup& setup, const EvalConfig& eval, uint64_t seed, const std::string& directory);
+
+}  // namespace slamer

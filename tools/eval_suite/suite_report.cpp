@@ -1,0 +1,209 @@
+#include "tools/eval_suite/suite_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+namespace slamer {
+namespace {
+
+std::string cell(const char* pattern, double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), pattern, value);
+  return text;
+}
+
+const RunScores* run_named(const WorldResult& w, const std::string& prefix) {
+  for (const NamedRun& run : w.runs) {
+    if (run.name.rfind(prefix, 0) == 0) {
+      return &run.scores;
+    }
+  }
+  return nullptr;
+}
+
+// A column of the one-line-per-world table: its value for a world (NaN: n/a); worst = max or min.
+struct Column {
+  std::string name;
+  double (*value)(const WorldResult&);
+  bool worst_is_max;
+};
+
+double nan() {
+  return std::numeric_limits<double>::quiet_NaN();
+}
+double error_of(const WorldResult& w, const char* mode) {
+  const RunScores* s = run_named(w, mode);
+  return s != nullptr && s->pose.samples > 0 ? 100.0 * s->pose.position_mean : nan();
+}
+double lost_of(const WorldResult& w, const char* mode) {
+  const RunScores* s = run_named(w, mode);
+  return s != nullptr && s->pose.samples > 0 ? 100.0 * s->pose.lost_fraction : nan();
+}
+double acc(const AccuracyStats& a) {
+  return a.scans > 0 ? 100.0 * a.mean : nan();
+}
+const RunScores& slamer_run(const WorldResult& w) {
+  static const RunScores kNone;  // constant, not state: a world without a SLAMER run scores n/a
+  const RunScores* s = run_named(w, "slamer");
+  return s != nullptr ? *s : kNone;
+}
+
+const std::vector<Column>& columns() {
+  static const std::vector<Column> kColumns{
+      {"LFM cm", [](const WorldResult& w) { return error_of(w, "lfm"); }, true},
+      {"SLFM cm", [](const WorldResult& w) { return error_of(w, "slfm"); }, true},
+      {"SLAMER cm", [](const WorldResult& w) { return error_of(w, "slamer"); }, true},
+      {"lost LFM %", [](const WorldResult& w) { return lost_of(w, "lfm"); }, true},
+      {"lost SLAMER %", [](const WorldResult& w) { return lost_of(w, "slamer"); }, true},
+      {"ER rec %", [](const WorldResult& w) { return acc(slamer_run(w).recognizer); }, false},
+      {"ER map %", [](const WorldResult& w) { return acc(slamer_run(w).map_based); }, false},
+      {"ER SLAMER %", [](const WorldResult& w) { return acc(slamer_run(w).slamer); }, false},
+      {"differs rec %", [](const WorldResult& w) { return acc(slamer_run(w).recognizer_differs); }, false},
+      {"differs map %", [](const WorldResult& w) { return acc(slamer_run(w).map_based_differs); }, false},
+      {"differs SLAMER %", [](const WorldResult& w) { return acc(slamer_run(w).slamer_differs); }, false},
+  };
+  return kColumns;
+}
+
+constexpr const char* kOther = "in another state than the map";
+constexpr const char* kChanging = "changing during the run";
+
+std::string doors_text(const DoorScores& d, const std::string& which) {
+  if (d.objects == 0) {
+    return "no object on a door " + which;
+  }
+  const auto share = [&](int64_t right) { return cell("%.1f %%", 100.0 * static_cast<double>(right) / d.objects); };
+  return std::to_string(d.objects) + " objects on " + std::to_string(d.doors_seen) + " doors " + which +
+         ", seen within 5 m: right by the recognizer " + share(d.recognizer) + ", map-based " + share(d.map_based) +
+         ", SLAMER " + share(d.slamer);
+}
+
+std::string confusion_text(const std::string& title, const Confusion& c, const EvalOptions& options) {
+  std::ostringstream out;
+  out << title << " (rows: truth, columns: predicted; % of the row, objects in the last column)\n";
+  const std::size_t n = options.classes.size();
+  char line[64];
+  std::snprintf(line, sizeof(line), "%-18s", "");
+  out << line;
+  for (std::size_t j = 0; j <= n; ++j) {
+    std::snprintf(line, sizeof(line), " %7.7s", j < n ? options.classes[j].name.c_str() : "none");
+    out << line;
+  }
+  out << "  objects\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    int64_t total = 0;
+    const std::vector<int64_t> zero(n + 1, 0);
+    const std::vector<int64_t>& row = i < c.counts.size() ? c.counts[i] : zero;
+    for (const int64_t v : row) {
+      total += v;
+    }
+    std::snprintf(line, sizeof(line), "%-18s", options.classes[i].name.c_str());
+    out << line;
+    for (std::size_t j = 0; j <= n; ++j) {
+      std::snprintf(line, sizeof(line), " %7s",
+                    total == 0 ? "-" : cell("%.1f", 100.0 * static_cast<double>(row[j]) / total).c_str());
+      out << line;
+    }
+    out << "  " << total << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace
+
+uint64_t test_world_seed(uint64_t suite_seed, int index) {
+  return kTrainingSeedsEnd + 1000 * suite_seed + static_cast<uint64_t>(index);
+}
+
+std::string render_world(const WorldResult& world, const EvalOptions& options) {
+  std::ostringstream out;
+  int differ = 0, change = 0;
+  for (const MapDifferences::Door& d : world.differences.doors) {
+    differ += d.map_state != d.truth_state ? 1 : 0;
+    change += d.changes.empty() ? 0 : 1;
+  }
+  out << "=== world " << world.seed << ": " << world.differences.doors.size() << " doors (" << differ
+      << " in another state than the map, " << change << " changing during the run), " << world.differences.added
+      << " objects added, " << world.differences.removed << " removed\n"
+      << render_table(world.runs, options) << doors_text(world.doors, kOther) << "\n"
+      << doors_text(world.changing_doors, kChanging) << "\n";
+  return out.str();
+}
+
+std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOptions& options) {
+  std::ostringstream out;
+  char text[64];
+  out << "\n=== " << worlds.size() << " worlds: pose error (mean per run), lost, ER Acc of the SLAMER run "
+      << "(recognizer, map-based, SLAMER), and over the objects where the map differs from the truth\n";
+  std::snprintf(text, sizeof(text), "%-8s", "world");
+  out << text;
+  for (const Column& c : columns()) {
+    std::snprintf(text, sizeof(text), " %9.9s", c.name.c_str());
+    out << text;
+  }
+  out << "\n";
+  std::vector<std::vector<double>> values(columns().size());
+  for (const WorldResult& w : worlds) {
+    std::snprintf(text, sizeof(text), "%-8llu", static_cast<unsigned long long>(w.seed));
+    out << text;
+    for (std::size_t c = 0; c < columns().size(); ++c) {
+      const double v = columns()[c].value(w);
+      std::snprintf(text, sizeof(text), " %9.2f", v);
+      out << text;
+      if (std::isfinite(v)) {
+        values[c].push_back(v);
+      }
+    }
+    out << "\n";
+  }
+  for (const bool worst : {false, true}) {
+    std::snprintf(text, sizeof(text), "%-8s", worst ? "worst" : "mean");
+    out << text;
+    for (std::size_t c = 0; c < columns().size(); ++c) {
+      const std::vector<double>& v = values[c];
+      double result = nan();
+      if (!v.empty()) {
+        result = worst ? (columns()[c].worst_is_max ? *std::max_element(v.begin(), v.end())
+                                                    : *std::min_element(v.begin(), v.end()))
+                       : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+      }
+      std::snprintf(text, sizeof(text), " %9.2f", result);
+      out << text;
+    }
+    out << "\n";
+  }
+  int above_map = 0, above_recognizer = 0, counted = 0;
+  for (const WorldResult& w : worlds) {
+    const RunScores& s = slamer_run(w);
+    if (s.slamer.scans > 0 && s.map_based.scans > 0) {
+      ++counted;
+      above_map += s.slamer.mean >= s.map_based.mean + 0.01 ? 1 : 0;
+      above_recognizer += s.slamer.mean >= s.recognizer.mean + 0.05 ? 1 : 0;
+    }
+  }
+  DoorScores doors, changing;
+  for (const WorldResult& w : worlds) {
+    doors.merge(w.doors);
+    changing.merge(w.changing_doors);
+  }
+  out << "All worlds: " << doors_text(doors, kOther) << "\n"
+      << "All worlds: " << doors_text(changing, kChanging) << "\n";
+  out << "SLAMER ER Acc >= map-based + 1 point on " << above_map << " of " << counted << " worlds, >= recognizer + 5 "
+      << "points on " << above_recognizer << "\n\n";
+  Confusion recognizer, map_based, slamer;
+  for (const WorldResult& w : worlds) {
+    recognizer.merge(slamer_run(w).recognizer_confusion);
+    map_based.merge(slamer_run(w).map_based_confusion);
+    slamer.merge(slamer_run(w).slamer_confusion);
+  }
+  out << confusion_text("Recognizer", recognizer, options) << "\n"
+      << confusion_text("Map-based (SLAMER's pose)", map_based, options) << "\n"
+      << confusion_text("SLAMER", slamer, options);
+  return out.str();
+}
+
+}  // namespace slamer
