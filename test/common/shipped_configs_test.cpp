@@ -17,6 +17,7 @@
 #include "recognizer/recognizer_config.hpp"
 #include "test/support/child_process.hpp"
 #include "tools/eval/eval_config.hpp"
+#include "tools/launch/launch_check.hpp"
 #include "tools/sim/floor_plan.hpp"
 #include "tools/sim/sim_config.hpp"
 #include "tools/sim/world.hpp"
@@ -37,6 +38,16 @@ void load_map(const std::string& path) {
   const SemanticMap map = load_semantic_map(path);
   EXPECT_TRUE(map.warnings.empty()) << path << ": " << (map.warnings.empty() ? "" : map.warnings[0]);
   EXPECT_EQ(map.unknown_color_cells, 0) << path;
+}
+
+// A launch file passes slamer-launch --check: its programs exist (the build's
+// bin/ or PATH) and every config and file it names loads with its program's loader.
+void check_launch(const std::string& path) {
+  const std::vector<std::string> problems =
+      launch::check_launch_file(path, {std::string(SLAMER_BINARY_DIR) + "/bin", "/usr/bin", "/bin"});
+  for (const std::string& problem : problems) {
+    ADD_FAILURE() << problem;
+  }
 }
 
 const std::map<std::string, std::function<void(const std::string&)>>& loaders() {
@@ -68,6 +79,18 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
       {"maps/paper_indoor/plan.yaml", [](const std::string& path) { load_options<FloorPlan>(path); }},
       {"maps/small_room/map.yaml", load_map},
       {"maps/paper_indoor/map.yaml", load_map},
+      {"launch/sim_direct.yaml", check_launch},
+      {"launch/icart_mini.yaml", check_launch},
+      {"launch/icart_mini_sim.yaml",
+       [](const std::string& path) {
+         // Names config/sim_drivers.yaml, urg_sim.yaml and wheels_sim.yaml of the simulated drivers
+         // (branch feed); checked in full once they are in.
+         if (!std::filesystem::exists(std::string(SLAMER_SOURCE_DIR) + "/config/sim_drivers.yaml")) {
+           std::printf("[ note ] %s not checked: config/sim_drivers.yaml is not here yet\n", path.c_str());
+           return;
+         }
+         check_launch(path);
+       }},
   };
   return table;
 }
