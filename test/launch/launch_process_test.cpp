@@ -266,6 +266,39 @@ TEST(SlamerLaunch, ACrashingProcessIsRetriedWithBackoffThenFatal) {
   EXPECT_NE(ended.log.find("-> FATAL"), std::string::npos) << ended.log;
 }
 
+// Ctrl-C (SIGINT to slamer-launch alone, as a terminal's is once supervisord has its own session).
+TEST(SlamerLaunch, SigintStopsEveryProcessAndExitsZero) {
+  const std::string dir = temp_dir();
+  std::ofstream(dir + "/launch.yaml")
+      << "log_dir: " << dir << "/log\nprocesses:\n"
+      << "  - {name: a, program: /bin/sleep, args: ['60'], lcm: false, start_seconds: 0}\n"
+      << "  - {name: b, program: /bin/sh, args: [-c, 'trap \"\" TERM; sleep 60'], lcm: false, start_seconds: 0,"
+      << " group: 1, stop_timeout: 1}\n";
+  test::ChildProcess launch(test::binary_path("slamer-launch"), {dir + "/launch.yaml"});
+  const auto start = Clock::now();
+  while (launch.stderr_text().find("every group is up") == std::string::npos && since(start) < 20.0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_NE(launch.stderr_text().find("every group is up"), std::string::npos) << launch.stderr_text();
+  std::vector<int64_t> pids{supervisord_pid(launch.stderr_text())};
+  const std::string log = test::read_file(dir + "/log/supervisord.log");
+  for (const std::string name : {"'a' with pid ", "'b' with pid "}) {
+    const std::size_t at = log.find(name);
+    ASSERT_NE(at, std::string::npos) << log;
+    pids.push_back(std::atoll(log.c_str() + at + name.size()));
+  }
+  launch.signal(SIGINT);
+  EXPECT_EQ(launch.wait(20.0), std::optional<int>(0)) << launch.stderr_text();
+  for (const int64_t pid : pids) {
+    EXPECT_FALSE(alive(pid)) << "pid " << pid << " is still running";
+  }
+  // b ignores SIGTERM: supervisor's SIGKILL after its stop_timeout; then a, in reverse order.
+  const std::string text = launch.stderr_text();
+  EXPECT_LT(text.find("stopping b"), text.find("stopping a")) << text;
+  EXPECT_NE(test::read_file(dir + "/log/supervisord.log").find("killing 'b'"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(SlamerLaunch, CheckListsEveryProblemAndStartsNothing) {
   const std::string dir = temp_dir();
   std::ofstream(dir + "/recognizer.yaml") << "channels: {lidar: LIDAR, bogus: 1}\n";

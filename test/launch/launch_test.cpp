@@ -126,9 +126,11 @@ TEST(LaunchFile, NoProcessesOrNoneEnabledIsAProblem) {
 }
 
 TEST(LaunchFile, ExpandsOnlyLogAndRunDir) {
-  EXPECT_EQ(expand("${log_dir}/a-${run_dir}", "/l", "/r"), "/l/a-/r");
-  EXPECT_EQ(expand("plain", "/l", "/r"), "plain");
-  EXPECT_THROW(expand("${log_dir", "/l", "/r"), std::invalid_argument);
+  const Directories dirs{"/x", "/l", "/r", "/s"};
+  EXPECT_EQ(expand("${log_dir}/a-${run_dir}${state_dir}", dirs), "/l/a-/r/s");
+  EXPECT_EQ(expand("plain", dirs), "plain");
+  EXPECT_THROW(expand("${log_dir", dirs), std::invalid_argument);
+  EXPECT_THROW(expand("${LOG_DIR}", dirs), std::invalid_argument);
   EXPECT_EQ(flag_value({"--map", "m.yaml", "--x=1"}, "--map"), "m.yaml");
   EXPECT_EQ(flag_value({"--map=m.yaml"}, "--map"), "m.yaml");
   EXPECT_EQ(flag_value({"--mapx", "y"}, "--map"), "");
@@ -177,7 +179,7 @@ TEST(SupervisorConf, OneProgramPerEnabledProcessQuotedAsShlexReadsIt) {
       "  - {name: raw, program: sleep, args: ['1'], lcm: false, start_seconds: 0}\n",
       "f.yaml", &problems);
   ASSERT_TRUE(problems.empty());
-  const Directories dirs{"/launch", "/logs", "/run"};
+  const Directories dirs{"/launch", "/logs", "/run", "/state"};
   const auto loc = process_argv(f.processes[1], "/bin/slamer-localizer", f.lcm_url, dirs);
   EXPECT_EQ(loc, (std::vector<std::string>{"/bin/slamer-localizer", "--config", "/c/loc.yaml",
                                            "--lcm-url=udpm://239.255.76.67:7667?ttl=0"}));

@@ -141,7 +141,7 @@ std::vector<std::string> check_launch_file(const std::string& path, const std::v
     std::vector<std::string> args;
     try {
       for (const std::string& arg : p.args) {
-        args.push_back(expand(arg, "LOG_DIR", "RUN_DIR"));
+        args.push_back(expand(arg, Directories{"", "LOG_DIR", "RUN_DIR", "STATE_DIR"}));
       }
     } catch (const std::invalid_argument&) {
       continue;  // reported by read_launch_file

@@ -10,7 +10,7 @@
 namespace slamer::launch {
 namespace {
 
-const std::set<std::string> kTopKeys = {"lcm_url", "log_dir", "run_dir", "processes"};
+const std::set<std::string> kTopKeys = {"lcm_url", "log_dir", "run_dir", "state_dir", "processes"};
 const std::set<std::string> kProcessKeys = {"name",  "program",       "config",        "args",
                                             "group", "enabled",       "respawn",       "required",
                                             "lcm",   "start_seconds", "start_retries", "stop_timeout"};
@@ -123,7 +123,7 @@ LaunchProcess read_process(const ConfigReader& reader, const std::string& direct
         reader.fail("args", "argument " + std::to_string(i + 1) + " '" + p.args[i] + "': " + problem);
       }
       try {
-        expand(p.args[i], "", "");
+        expand(p.args[i], Directories{});
       } catch (const std::invalid_argument& e) {
         reader.fail("args", "argument " + std::to_string(i + 1) + ": " + e.what());
       }
@@ -153,6 +153,7 @@ LaunchFile read_reader(const ConfigReader& reader, std::vector<std::string>* pro
   });
   attempt(problems, [&] { reader.read("log_dir", &file.log_dir); });
   attempt(problems, [&] { reader.read("run_dir", &file.run_dir); });
+  attempt(problems, [&] { reader.read("state_dir", &file.state_dir); });
   std::vector<ConfigReader> entries;
   attempt(problems, [&] {
     reader.require("processes");
@@ -225,7 +226,7 @@ bool has_flag(const std::vector<std::string>& args, const std::string& flag) {
   return false;
 }
 
-std::string expand(const std::string& text, const std::string& log_dir, const std::string& run_dir) {
+std::string expand(const std::string& text, const Directories& dirs) {
   std::string out;
   std::size_t i = 0;
   while (i < text.size()) {
@@ -238,12 +239,14 @@ std::string expand(const std::string& text, const std::string& log_dir, const st
     const std::string name = close == std::string::npos ? "" : text.substr(open + 2, close - open - 2);
     out += text.substr(i, open - i);
     if (name == "log_dir") {
-      out += log_dir;
+      out += dirs.log_dir;
     } else if (name == "run_dir") {
-      out += run_dir;
+      out += dirs.run_dir;
+    } else if (name == "state_dir") {
+      out += dirs.state_dir;
     } else {
       throw std::invalid_argument("unknown '${" + name + (close == std::string::npos ? "" : "}") +
-                                  "' (only ${log_dir} and ${run_dir} expand)");
+                                  "' (only ${log_dir}, ${run_dir} and ${state_dir} expand)");
     }
     i = close + 1;
   }

@@ -8,13 +8,16 @@
 //                             # working directory slamer-launch starts in (--log-dir overrides)
 //   run_dir: ""               # supervisord.conf and its control socket ("" = a fresh /tmp dir, removed
 //                             # at exit; --run-dir overrides)
+//   state_dir: slamer_state   # kept across runs, e.g. the localizer's pose file (--state-dir overrides;
+//                             # the systemd unit passes /var/lib/slamer)
 //   processes:                # at least one enabled
 //     - name: localizer       # required; [A-Za-z0-9_-], unique; supervisor's program name
 //       program: slamer-localizer  # required; a bare name is looked up beside slamer-launch, then in
 //                             # PATH; a path is relative to this file
 //       config: ../localizer.yaml  # passed as --config FILE, relative to this file; checked by --check
 //                             # with the program's own loader
-//       args: [--map, ../maps/small_room/map.yaml]  # more arguments; ${log_dir} and ${run_dir} expand.
+//       args: [--map, ../maps/small_room/map.yaml]  # more arguments; ${log_dir}, ${run_dir} and
+//                             # ${state_dir} expand (to absolute paths).
 //                             # Every process runs in this file's directory, so relative paths in
 //                             # args are relative to this file too
 //       group: 1              # start order: group 0 first, each group RUNNING before the next
@@ -59,7 +62,16 @@ struct LaunchFile {
   std::string lcm_url;
   std::string log_dir = "slamer_logs";
   std::string run_dir;
+  std::string state_dir = "slamer_state";
   std::vector<LaunchProcess> processes;
+};
+
+// The directories of a run, all absolute.
+struct Directories {
+  std::string launch_dir;  // the launch file's: where the processes run
+  std::string log_dir;
+  std::string run_dir;
+  std::string state_dir;
 };
 
 // Reads a launch file. Every problem found (YAML syntax, unknown keys, missing
@@ -73,8 +85,8 @@ LaunchFile parse_launch_file(const std::string& yaml_text, const std::string& so
 std::string flag_value(const std::vector<std::string>& args, const std::string& flag);
 bool has_flag(const std::vector<std::string>& args, const std::string& flag);
 
-// `text` with ${log_dir} and ${run_dir} replaced; throws std::invalid_argument
-// naming any other ${...}.
-std::string expand(const std::string& text, const std::string& log_dir, const std::string& run_dir);
+// `text` with ${log_dir}, ${run_dir} and ${state_dir} replaced; throws
+// std::invalid_argument naming any other ${...}.
+std::string expand(const std::string& text, const Directories& dirs);
 
 }  // namespace slamer::launch

@@ -261,6 +261,15 @@ int run_launch(const LaunchRequest& request) {
   dirs.launch_dir = fs::absolute(file.directory).lexically_normal().string();
   dirs.log_dir = fs::absolute(request.log_dir.empty() ? file.log_dir : request.log_dir).lexically_normal().string();
   fs::create_directories(dirs.log_dir);
+  dirs.state_dir =
+      fs::absolute(request.state_dir.empty() ? file.state_dir : request.state_dir).lexically_normal().string();
+  for (const LaunchProcess& p : file.processes) {
+    for (const std::string& arg : p.args) {
+      if (p.enabled && arg.find("${state_dir}") != std::string::npos) {
+        fs::create_directories(dirs.state_dir);  // only when something keeps its state there
+      }
+    }
+  }
   const std::string run_dir = request.run_dir.empty() ? file.run_dir : request.run_dir;
   bool owns_run_dir = false;
   if (run_dir.empty()) {

@@ -14,8 +14,9 @@ struct LaunchRequest {
   std::string file;
   bool lcm_url_given = false;
   std::string lcm_url;
-  std::string log_dir;  // "" = the file's
-  std::string run_dir;  // "" = the file's
+  std::string log_dir;    // "" = the file's
+  std::string run_dir;    // "" = the file's
+  std::string state_dir;  // "" = the file's
   std::vector<std::string> enable;
   std::vector<std::string> disable;
   std::vector<std::string> search_dirs;  // where bare program names are looked up

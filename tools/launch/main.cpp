@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   cli.add_option("lcm-url", "URL", "LCM URL for every process (overrides the file's lcm_url)");
   cli.add_option("log-dir", "DIR", "per-process logs here (overrides the file's log_dir)");
   cli.add_option("run-dir", "DIR", "supervisord.conf and its socket here (overrides the file's run_dir)");
+  cli.add_option("state-dir", "DIR", "${state_dir} of the file's args (overrides the file's state_dir)");
   cli.add_option("enable", "A,B,...", "also start these processes the file lists with enabled: false");
   cli.add_option("disable", "A,B,...", "do not start these");
   try {
@@ -82,6 +83,7 @@ int main(int argc, char** argv) {
   request.lcm_url = cli.get("lcm-url");
   request.log_dir = cli.get("log-dir");
   request.run_dir = cli.get("run-dir");
+  request.state_dir = cli.get("state-dir");
   request.enable = split(cli.get("enable"), ',');
   request.disable = split(cli.get("disable"), ',');
   request.search_dirs = search_dirs();

@@ -33,7 +33,7 @@ std::vector<std::string> process_argv(const LaunchProcess& process, const std::s
     argv.push_back("--lcm-url=" + lcm_url);
   }
   for (const std::string& arg : process.args) {
-    argv.push_back(expand(arg, dirs.log_dir, dirs.run_dir));
+    argv.push_back(expand(arg, dirs));
   }
   return argv;
 }

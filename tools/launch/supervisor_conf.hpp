@@ -15,12 +15,6 @@
 
 namespace slamer::launch {
 
-struct Directories {
-  std::string launch_dir;  // absolute: where the processes run
-  std::string log_dir;     // absolute
-  std::string run_dir;     // absolute
-};
-
 // The control socket's path in the run directory.
 std::string socket_path(const Directories& dirs);
 
