@@ -164,9 +164,10 @@ LaunchFile read_reader(const ConfigReader& reader, std::vector<std::string>* pro
   for (const ConfigReader& entry : entries) {
     LaunchProcess p = read_process(entry, file.directory, problems);
     if (!p.name.empty()) {
-      const auto [it, fresh] = first_seen.emplace(p.name, p.where["name"]);
-      if (!fresh) {
-        attempt(problems, [&] { entry.fail("name", "duplicate name '" + p.name + "' (first at " + it->second + ")"); });
+      const auto inserted = first_seen.emplace(p.name, p.where["name"]);
+      if (!inserted.second) {
+        const std::string first = inserted.first->second;
+        attempt(problems, [&] { entry.fail("name", "duplicate name '" + p.name + "' (first at " + first + ")"); });
       }
     }
     enabled += p.enabled ? 1 : 0;

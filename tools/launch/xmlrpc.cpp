@@ -166,7 +166,8 @@ XmlRpcValue parse_value(Reader& in, int depth) {
       in.expect("/name");
       XmlRpcValue member = parse_value(in, depth + 1);
       in.expect("/member");
-      v.members.emplace_back(std::move(name), std::move(member));
+      v.member_names.push_back(std::move(name));
+      v.member_values.push_back(std::move(member));
     }
     in.expect("/struct");
   } else {
@@ -189,9 +190,9 @@ int64_t int_member(const XmlRpcValue& value, const std::string& name) {
 }  // namespace
 
 const XmlRpcValue* XmlRpcValue::member(const std::string& name) const {
-  for (const auto& [key, value] : members) {
-    if (key == name) {
-      return &value;
+  for (std::size_t i = 0; i < member_names.size(); ++i) {
+    if (member_names[i] == name) {
+      return &member_values[i];
     }
   }
   return nullptr;

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace slamer::launch {
@@ -20,10 +19,11 @@ class XmlRpcError : public std::runtime_error {
 struct XmlRpcValue {
   enum class Kind { kString, kInt, kBool, kDouble, kArray, kStruct, kNil };
   Kind kind = Kind::kNil;
-  std::string text;     // kString; the literal of kDouble
-  int64_t integer = 0;  // kInt, kBool
-  std::vector<XmlRpcValue> items;
-  std::vector<std::pair<std::string, XmlRpcValue>> members;
+  std::string text;                        // kString; the literal of kDouble
+  int64_t integer = 0;                     // kInt, kBool
+  std::vector<XmlRpcValue> items;          // kArray
+  std::vector<std::string> member_names;   // kStruct, in order
+  std::vector<XmlRpcValue> member_values;  // (a vector of pairs would need the type complete)
 
   const XmlRpcValue* member(const std::string& name) const;
 };
