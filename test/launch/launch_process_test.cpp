@@ -5,7 +5,10 @@
 // every process and exits 0; a required process's end ends the launch; a
 // crashing one is retried with backoff, then FATAL; --check lists problems.
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -61,6 +64,16 @@ class Listener {
     lcm_.subscribeFunction(
         "LINE_OBJECTS", +[](const lcm::ReceiveBuffer*, const std::string&, Listener* self) { ++self->line_objects; },
         this);
+    lcm_.subscribeFunction(
+        "LIDAR",
+        +[](const lcm::ReceiveBuffer*, const std::string&, Listener* self) { self->lidar.push_back(since(self->t0)); },
+        this);
+    lcm_.subscribeFunction(
+        "ODOMETRY",
+        +[](const lcm::ReceiveBuffer*, const std::string&, Listener* self) {
+          self->odometry.push_back(since(self->t0));
+        },
+        this);
   }
   // Handles messages until `done()` or `timeout_s`; returns done().
   template <class Done>
@@ -76,6 +89,7 @@ class Listener {
   std::vector<std::pair<double, pose_estimate_t>> poses;  // with the test's time of arrival
   std::vector<pose_estimate_t> truth;
   int line_objects = 0;
+  std::vector<double> lidar, odometry;  // arrival times
   Clock::time_point t0 = Clock::now();
 
  private:
@@ -106,6 +120,36 @@ double error_to_truth(const pose_estimate_t& p, const std::vector<pose_estimate_
     }
   }
   return best == nullptr ? 1e9 : std::hypot(p.x - best->x, p.y - best->y);
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+// The first message at or after `t`; -1 if none.
+double first_after(const std::vector<double>& times, double t) {
+  for (const double x : times) {
+    if (x >= t) {
+      return x;
+    }
+  }
+  return -1.0;
+}
+
+int free_tcp_port() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t size = sizeof address;
+  bind(fd, reinterpret_cast<sockaddr*>(&address), size);
+  getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size);
+  close(fd);
+  return ntohs(address.sin_port);
 }
 
 int64_t supervisord_pid(const std::string& launch_stderr) {
@@ -215,6 +259,48 @@ TEST(SlamerLaunch, SimulatedStackStartsInOrderSurvivesKill9AndStopsOnSigterm) {
   // Reverse order: the sim (group 1) stopped before the localizer (group 0).
   const std::string text = launch.stderr_text();
   EXPECT_LT(text.find("stopping sim"), text.find("stopping recognizer")) << text;
+  fs::remove_all(dir);
+}
+
+// The real drivers against their device emulators: kill -9 of either driver is
+// answered by a restart and its stream resumes; nothing else restarts.
+TEST(SlamerLaunch, Kill9OfADriverRestartsOnlyThatDriver) {
+  const std::string dir = temp_dir();
+  const std::string url = test::unique_lcm_url(72);
+  const std::string port = std::to_string(free_tcp_port());
+  std::ofstream(dir + "/launch.yaml")
+      << "lcm_url: \"" << url << "\"\nlog_dir: " << dir << "/log\nrun_dir: " << dir << "/run\nprocesses:\n"
+      << "  - {name: urg-sim, program: slamer-urg-sim, args: [--port, '" << port
+      << "'], lcm: false, start_seconds: 1}\n"
+      << "  - {name: tfrog-sim, program: slamer-tfrog-sim, args: [--link, '${run_dir}/tfrog', --robot, " << kSource
+      << "/config/robots/icart-mini.param, --path, '0.2,0,120'], start_seconds: 1}\n"
+      << "  - {name: urg, program: slamer-urg, config: " << kSource
+      << "/config/urg.yaml, args: [--host, 127.0.0.1, --port, '" << port << "'], group: 1, start_seconds: 1}\n"
+      << "  - {name: wheels, program: slamer-wheels, config: " << kSource
+      << "/config/wheels.yaml, args: [--device, '${run_dir}/tfrog'], group: 1, start_seconds: 1}\n";
+  Listener bus(url);
+  test::ChildProcess launch(test::binary_path("slamer-launch"), {dir + "/launch.yaml"});
+  ASSERT_TRUE(bus.until(20.0, [&] { return bus.lidar.size() >= 20 && bus.odometry.size() >= 50; }))
+      << launch.stderr_text();
+  for (const std::string driver : {"slamer-urg", "slamer-wheels"}) {
+    ASSERT_TRUE(bus.until(5.0, [&] { return bus.pids[driver].size() == 1; })) << driver;
+    ASSERT_EQ(::kill(*bus.pids[driver].begin(), SIGKILL), 0);
+    const double killed_at = since(bus.t0);
+    const std::vector<double>& stream = driver == "slamer-urg" ? bus.lidar : bus.odometry;
+    ASSERT_TRUE(
+        bus.until(15.0, [&] { return bus.pids[driver].size() == 2 && first_after(stream, killed_at + 0.3) > 0; }))
+        << driver << " did not come back\n"
+        << launch.stderr_text();
+    std::printf("[ measured ] kill -9 of %s: its stream back %.2f s later\n", driver.c_str(),
+                first_after(stream, killed_at + 0.3) - killed_at);
+  }
+  const std::string log = test::read_file(dir + "/log/supervisord.log");
+  EXPECT_EQ(count(log, "spawned: 'urg-sim'"), 1u) << log;
+  EXPECT_EQ(count(log, "spawned: 'tfrog-sim'"), 1u) << log;
+  EXPECT_EQ(count(log, "spawned: 'urg'"), 2u) << log;
+  EXPECT_EQ(count(log, "spawned: 'wheels'"), 2u) << log;
+  launch.signal(SIGTERM);
+  EXPECT_EQ(launch.wait(30.0), std::optional<int>(0)) << launch.stderr_text();
   fs::remove_all(dir);
 }
 
