@@ -10,6 +10,7 @@
 #include "tools/launch/launch_check.hpp"
 #include "tools/launch/launch_file.hpp"
 #include "tools/launch/launch_sequence.hpp"
+#include "tools/launch/program_help.hpp"
 #include "tools/launch/supervisor_conf.hpp"
 #include "tools/launch/xmlrpc.hpp"
 
@@ -151,9 +152,10 @@ TEST(LaunchCheck, NamesTheConfigAndKeyOfWhatDoesNotLoad) {
                     "  - {name: log, program: lcm-logger, config: localizer.yaml}\n"
                     "  - {name: nope, program: slamer-no-such-program}\n"
                     "  - {name: missing, program: slamer-urg, config: urg_missing.yaml}\n"
-                    "  - {name: sim, program: slamer-sim}\n");
+                    "  - {name: sim, program: slamer-sim}\n"
+                    "  - {name: flags, program: slamer-urg, args: [--host, h, --hots, h, '--port=1']}\n");
   const std::vector<std::string> problems = check_launch_file(launch, search());
-  ASSERT_EQ(problems.size(), 6u) << ::testing::PrintToString(problems);
+  ASSERT_EQ(problems.size(), 7u) << ::testing::PrintToString(problems);
   EXPECT_EQ(problems[0].rfind(dir.path() + "/recognizer.yaml:3: unknown key 'channels.line_object'", 0), 0u)
       << problems[0];
   EXPECT_NE(problems[0].find("process 'rec', " + launch + ":2: key 'processes[0].config'"), std::string::npos);
@@ -167,6 +169,18 @@ TEST(LaunchCheck, NamesTheConfigAndKeyOfWhatDoesNotLoad) {
   EXPECT_EQ(problems[4].rfind(launch + ":7: key 'processes[5].config': '" + dir.path() + "/urg_missing.yaml'", 0), 0u)
       << problems[4];
   EXPECT_NE(problems[5].find("--world FILE is required"), std::string::npos) << problems[5];
+  EXPECT_EQ(problems[6], launch + ":9: key 'processes[7].args': 'slamer-urg' does not list --hots in its --help");
+}
+
+TEST(LaunchCheck, OptionsAreComparedWithWhatTheHelpLists) {
+  const std::string help = "usage: x [--lcm-url URL] [--map FILE]\n  -i, --increment  more\n  --map-dir D\n";
+  EXPECT_EQ(unlisted_options({"--map", "m", "--lcm-url=u", "-i", "--increment", "plain", "--"}, help),
+            std::vector<std::string>{});
+  EXPECT_EQ(unlisted_options({"--ma", "--map-di", "--mapx=1", "--lcm"}, help),
+            (std::vector<std::string>{"--ma", "--map-di", "--mapx", "--lcm"}));
+  EXPECT_TRUE(unlisted_options({"--anything"}, "usage: y FILE\n").empty());  // lists nothing: not compared
+  EXPECT_NE(program_help(kBin + "/slamer-recognizer").find("--replay"), std::string::npos);
+  EXPECT_EQ(program_help("/nonexistent/program"), "");
 }
 
 TEST(SupervisorConf, OneProgramPerEnabledProcessQuotedAsShlexReadsIt) {

@@ -13,6 +13,7 @@
 #include "drivers/wheels/wheels_options.hpp"
 #include "localizer/localizer_config.hpp"
 #include "recognizer/recognizer_config.hpp"
+#include "tools/launch/program_help.hpp"
 #include "tools/sim/sim_config.hpp"
 #include "tools/sim/world.hpp"
 #include "tools/status/status_table.hpp"
@@ -133,10 +134,23 @@ std::vector<std::string> check_launch_file(const std::string& path, const std::v
       continue;
     }
     const std::string where_program = p.where.at("program");
-    if (find_program(p.program, file.directory, search_dirs).empty()) {
+    const std::string program_path = find_program(p.program, file.directory, search_dirs);
+    if (program_path.empty()) {
       problems.push_back(
           where_program + ": program '" + p.program + "' not found" +
           (p.program.find('/') == std::string::npos ? " beside slamer-launch or in PATH" : " (or not executable)"));
+    } else {
+      // The options passed must be ones the program lists in its --help.
+      // (--config: a program slamer-launch can check takes it; for others the config is reported below.)
+      std::vector<std::string> passed = p.args;
+      if (p.lcm && !file.lcm_url.empty()) {
+        passed.push_back("--lcm-url");
+      }
+      for (const std::string& option : unlisted_options(passed, program_help(program_path))) {
+        problems.push_back(p.where.at(option == "--lcm-url" ? "program" : "args") + ": '" + p.program +
+                           "' does not list " + option + " in its --help" +
+                           (option == "--lcm-url" ? " (lcm: false if it is not on LCM)" : ""));
+      }
     }
     std::vector<std::string> args;
     try {

@@ -2,7 +2,8 @@
 // starting anything. Each program's config is loaded with the loader the
 // program itself uses (the project's option structs), and the files its
 // arguments name (the localizer's --map and --robot, the simulator's --world)
-// are loaded as the program would load them.
+// are loaded as the program would load them; each program is run with --help
+// to see that the options passed to it are ones it lists.
 #pragma once
 
 #include <string>
