@@ -199,11 +199,15 @@ TEST(SlamerLaunch, SimulatedStackStartsInOrderSurvivesKill9AndStopsOnSigterm) {
   ASSERT_TRUE(fs::exists(pose_file));
   ASSERT_EQ(::kill(old_pid, SIGKILL), 0);
   const double killed_at = since(bus.t0);
+  const int64_t killed_utime =
+      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count();
   ASSERT_TRUE(bus.until(15.0, [&] { return bus.pids["slamer-localizer"].size() == 2; })) << launch.stderr_text();
   // Its first poses are not LOST and it reaches OK within 5 s of its first pose, near the truth.
   const std::size_t first_after = [&] {
     std::size_t i = 0;
-    while (i < bus.poses.size() && bus.poses[i].first < killed_at) {
+    // Poses of scans taken after the kill come from the new process (older ones may still be in flight).
+    while (i < bus.poses.size() && bus.poses[i].second.utime <= killed_utime) {
       ++i;
     }
     return i;
@@ -239,6 +243,10 @@ TEST(SlamerLaunch, SimulatedStackStartsInOrderSurvivesKill9AndStopsOnSigterm) {
   EXPECT_EQ(bus.pids["slamer-recognizer"].size(), 1u);
   EXPECT_EQ(bus.pids["slamer-sim"].size(), 1u);
   EXPECT_EQ(bus.pids["slamer-launch"].size(), 1u);
+  const std::string spawns = test::read_file(dir + "/log/supervisord.log");
+  EXPECT_EQ(count(spawns, "spawned: 'localizer'"), 2u) << spawns;
+  EXPECT_EQ(count(spawns, "spawned: 'recognizer'"), 1u) << spawns;
+  EXPECT_EQ(count(spawns, "spawned: 'sim'"), 1u) << spawns;
 
   // SIGTERM: every process gone, supervisord too, exit 0.
   std::vector<int64_t> pids{supervisord_pid(launch.stderr_text())};
