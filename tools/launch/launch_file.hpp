@@ -8,7 +8,8 @@
 //                             # working directory slamer-launch starts in (--log-dir overrides)
 //   run_dir: ""               # supervisord.conf and its control socket ("" = a fresh /tmp dir, removed
 //                             # at exit; --run-dir overrides)
-//   state_dir: slamer_state   # kept across runs, e.g. the localizer's pose file (--state-dir overrides;
+//   state_dir: slamer_state   # kept across runs, e.g. the localizer's pose file; relative like log_dir; made
+//                             # only when an arg names ${state_dir} (--state-dir overrides;
 //                             # the systemd unit passes /var/lib/slamer)
 //   processes:                # at least one enabled
 //     - name: localizer       # required; [A-Za-z0-9_-], unique; supervisor's program name
