@@ -364,7 +364,7 @@ TEST(SlamerLaunch, ACrashingProcessIsRetriedWithBackoffThenFatal) {
 TEST(SlamerLaunch, SigintStopsEveryProcessAndExitsZero) {
   const std::string dir = temp_dir();
   std::ofstream(dir + "/launch.yaml")
-      << "log_dir: " << dir << "/log\nprocesses:\n"
+      << "log_dir: " << dir << "/log\nrun_dir: " << dir << "/run\nprocesses:\n"
       << "  - {name: a, program: /bin/sleep, args: ['60'], lcm: false, start_seconds: 0}\n"
       << "  - {name: b, program: /bin/sh, args: [-c, 'trap \"\" TERM; sleep 60'], lcm: false, start_seconds: 0,"
       << " group: 1, stop_timeout: 1}\n";
@@ -381,6 +381,11 @@ TEST(SlamerLaunch, SigintStopsEveryProcessAndExitsZero) {
     ASSERT_NE(at, std::string::npos) << log;
     pids.push_back(std::atoll(log.c_str() + at + name.size()));
   }
+  // A second launch on the same run directory is refused: it would drive the first one's supervisord.
+  test::ChildProcess second(test::binary_path("slamer-launch"), {dir + "/launch.yaml"});
+  EXPECT_EQ(second.wait(20.0), std::optional<int>(1));
+  EXPECT_NE(second.stderr_text().find("another slamer-launch with this run directory?"), std::string::npos)
+      << second.stderr_text();
   launch.signal(SIGINT);
   EXPECT_EQ(launch.wait(20.0), std::optional<int>(0)) << launch.stderr_text();
   for (const int64_t pid : pids) {

@@ -85,6 +85,10 @@ class Launcher {
   }
 
   int run(const std::vector<std::vector<std::string>>& argvs) {
+    if (client_.reachable()) {
+      throw std::runtime_error("a supervisord already answers on " + socket_path(dirs_) +
+                               " (another slamer-launch with this run directory?)");
+    }
     const std::string conf = dirs_.run_dir + "/supervisord.conf";
     std::ofstream(conf) << supervisor_config(file_, argvs, dirs_);
     std::vector<SequenceProcess> sequenced;
@@ -99,10 +103,6 @@ class Launcher {
     StatusTable table(StatusMonitorOptions{}.stale_after);
     bus.subscribe<process_status_t>(
         "PROCESS_STATUS", [&](const process_status_t& s, const ReceiveInfo& r) { table.update(s, r.receive_utime); });
-    if (client_.reachable()) {
-      throw std::runtime_error("a supervisord already answers on " + socket_path(dirs_) +
-                               " (another slamer-launch with this run directory?)");
-    }
     const auto start = std::chrono::steady_clock::now();
     Supervisord supervisord(conf);
     info("supervisord " + std::to_string(supervisord.pid()) + " on " + conf + "; logs in " + dirs_.log_dir);
