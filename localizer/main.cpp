@@ -58,6 +58,9 @@ LocalizerProcessConfig configure(const CommandLine& cli) {
   if (cli.has("robot")) {
     config.robot = cli.get("robot");
   }
+  if (cli.has("pose-file")) {
+    config.pose_file = cli.get("pose-file");
+  }
   if (cli.has("initial-pose")) {
     const std::vector<double> pose = cli.get_doubles("initial-pose");
     config.localizer.initial_pose = {pose[0], pose[1], pose[2]};
@@ -96,6 +99,7 @@ int main(int argc, char** argv) {
         cli.add_option("seed", "N", "random seed (overrides the config)");
         cli.add_option("map", "FILE", "semantic map YAML (overrides the config)");
         cli.add_option("robot", "FILE", "robot YAML, for the LiDAR mount (overrides the config)");
+        cli.add_option("pose-file", "FILE", "keep the last good pose here and resume from it (overrides the config)");
         cli.add_multi_option("initial-pose", 3, "X Y THETA", "start here [m, m, rad] (overrides the config)");
         slamer::add_replay_options(cli, "POSE, SEMANTIC_OBJECTS and PARTICLES");
       },

@@ -9,6 +9,7 @@ packages=(
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java default-jdk-headless
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev zlib1g-dev iproute2
+  supervisor
   "$@"
 )
 

@@ -19,6 +19,7 @@
 #include "test/support/child_process.hpp"
 #include "tools/annotate/object_list.hpp"
 #include "tools/eval/eval_config.hpp"
+#include "tools/launch/launch_check.hpp"
 #include "tools/sim/floor_plan.hpp"
 #include "tools/sim/sim_config.hpp"
 #include "tools/sim/world.hpp"
@@ -39,6 +40,16 @@ void load_map(const std::string& path) {
   const SemanticMap map = load_semantic_map(path);
   EXPECT_TRUE(map.warnings.empty()) << path << ": " << (map.warnings.empty() ? "" : map.warnings[0]);
   EXPECT_EQ(map.unknown_color_cells, 0) << path;
+}
+
+// A launch file passes slamer-launch --check: its programs exist (the build's
+// bin/ or PATH) and every config and file it names loads with its program's loader.
+void check_launch(const std::string& path) {
+  const std::vector<std::string> problems =
+      launch::check_launch_file(path, {std::string(SLAMER_BINARY_DIR) + "/bin", "/usr/bin", "/bin"});
+  for (const std::string& problem : problems) {
+    ADD_FAILURE() << problem;
+  }
 }
 
 const std::map<std::string, std::function<void(const std::string&)>>& loaders() {
@@ -103,6 +114,9 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
       {"maps/paper_indoor/plan.yaml", [](const std::string& path) { load_options<FloorPlan>(path); }},
       {"maps/small_room/map.yaml", load_map},
       {"maps/paper_indoor/map.yaml", load_map},
+      {"launch/sim_direct.yaml", check_launch},
+      {"launch/icart_mini.yaml", check_launch},
+      {"launch/icart_mini_sim.yaml", check_launch},
       {"maps/examples/small_room_slam.yaml", load_map},
       {"maps/examples/objects_example.yaml",
        [](const std::string& path) {
