@@ -57,7 +57,8 @@ TEST(LaunchFile, ReadsEveryKeyAndResolvesTheConfigAgainstTheFile) {
   EXPECT_EQ(f.log_dir, "logs");
   ASSERT_EQ(f.processes.size(), 2u);
   const LaunchProcess& a = f.processes[0];
-  EXPECT_EQ(a.config, "urg.yaml");  // a string source has no directory
+  // A string source has no directory: the working one; absolute, since the processes run elsewhere.
+  EXPECT_EQ(a.config, std::filesystem::absolute("urg.yaml").string());
   EXPECT_EQ(a.args, (std::vector<std::string>{"--host", "x"}));
   EXPECT_EQ(a.group, 2);
   EXPECT_FALSE(a.respawn);

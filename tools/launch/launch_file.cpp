@@ -112,7 +112,8 @@ LaunchProcess read_process(const ConfigReader& reader, const std::string& direct
   attempt(problems, [&] {
     reader.read("config", &p.config);
     if (!p.config.empty() && std::filesystem::path(p.config).is_relative()) {
-      p.config = (std::filesystem::path(directory) / p.config).lexically_normal().string();
+      // Absolute: the processes run in the launch file's directory, not where slamer-launch started.
+      p.config = std::filesystem::absolute(std::filesystem::path(directory) / p.config).lexically_normal().string();
     }
   });
   attempt(problems, [&] {
