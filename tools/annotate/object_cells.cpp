@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/geometry/polygon.hpp"
 #include "common/geometry/se2.hpp"
 
 namespace slamer {
@@ -25,18 +26,6 @@ CellBox box_around(const std::vector<Eigen::Vector2d>& points, double margin, co
   box.x1 = std::min(geometry.width - 1, static_cast<int>(std::ceil(high.x() + margin)) + 1);
   box.y1 = std::min(geometry.height - 1, static_cast<int>(std::ceil(high.y() + margin)) + 1);
   return box;
-}
-
-bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& polygon) {
-  bool inside = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
 }
 
 }  // namespace

@@ -6,22 +6,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
+#include "common/geometry/polygon.hpp"
+
 namespace slamer {
-namespace {
-
-bool inside_polygon(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& polygon) {
-  bool inside = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
-
-}  // namespace
 
 void read_options(const ConfigReader& reader, FloorPlan* plan) {
   reader.read("resolution", &plan->resolution, positive());
