@@ -4,7 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <sstream>
+#include <vector>
 
 #include "test/support/child_process.hpp"
 
@@ -32,14 +33,18 @@ TEST(SlamerEvalSuite, ThreeShortWorlds) {
     EXPECT_NE(out.find(title), std::string::npos) << title;
   }
   // The mean row: SLAMER's pose error tracks (under 30 cm) and its ER Acc is a percentage.
-  std::smatch mean;
-  ASSERT_TRUE(std::regex_search(out, mean,
-                                std::regex(R"(\nmean +([0-9.]+) +([0-9.]+) +([0-9.]+) +([0-9.]+) +)"
-                                           R"(([0-9.]+) +([0-9.]+) +([0-9.]+) +([0-9.]+))")))
-      << out;
-  EXPECT_LT(std::stod(mean[3]), 30.0);
-  EXPECT_GT(std::stod(mean[8]), 50.0);
-  EXPECT_LE(std::stod(mean[8]), 100.0);
+  // (Parsed by hand: GCC 12 warns inside <regex> under -O1 with the sanitizers.)
+  const std::size_t row = out.find("\nmean ");
+  ASSERT_NE(row, std::string::npos) << out;
+  std::istringstream fields(out.substr(row + 6, out.find('\n', row + 1) - row - 6));
+  std::vector<double> mean;
+  for (double v = 0.0; fields >> v;) {
+    mean.push_back(v);
+  }
+  ASSERT_GE(mean.size(), 8u) << out;
+  EXPECT_LT(mean[2], 30.0);
+  EXPECT_GT(mean[7], 50.0);
+  EXPECT_LE(mean[7], 100.0);
   EXPECT_EQ(test::read_file(dir + "/out/summary.txt"), out);
 }
 
