@@ -26,10 +26,7 @@ const std::string kSource = SLAMER_SOURCE_DIR;
 const std::string kBinary = SLAMER_BINARY_DIR;
 
 int run(const std::string& program, const std::vector<std::string>& args) {
-  test::ChildProcess child(program.find('/') == std::string::npos && program.rfind("lcm-", 0) == 0
-                               ? "/usr/bin/" + program
-                               : test::binary_path(program),
-                           args);
+  test::ChildProcess child(test::binary_path(program), args);
   const std::optional<int> code = child.wait(240.0);
   EXPECT_EQ(code, std::optional<int>(0)) << program << ": " << child.stderr_text();
   return code.value_or(-1);
