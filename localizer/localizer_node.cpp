@@ -11,7 +11,10 @@ namespace slamer {
 namespace {
 
 constexpr std::size_t kOdometryKept = 2000;  // 20 s at 100 Hz
-constexpr std::size_t kMaxWaiting = 16;      // scans held for their objects (0.4 s at 40 Hz)
+// A bound on memory only (about 9 kB a scan): how long a scan waits is
+// objects_wait, in time. A count (it was 16, 0.4 s at 40 Hz) cut the wait short
+// whenever the recognizer lagged more scans than that, however long objects_wait.
+constexpr std::size_t kMaxWaiting = 1024;
 
 double seconds(int64_t microseconds) {
   return static_cast<double>(microseconds) * 1e-6;

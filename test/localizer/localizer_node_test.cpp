@@ -93,6 +93,36 @@ TEST(LocalizerNode, ScansWaitInOrderForTheirObjects) {
   EXPECT_FALSE(node.health().objects_missing);  // objects came 125 ms before
 }
 
+TEST(LocalizerNode, ASlowRecognizerIsWaitedForAsLongAsObjectsWaitHoweverManyScansThatIs) {
+  const SmallWorld w;
+  LocalizerOptions options = node_options(LocalizerMode::kSlamer);
+  options.inputs.objects_wait = 1.0;
+  LocalizerNode node(w.map, options, w.robot.lidar.mount);
+  LaserScan scan = w.scan_at({2.0, 3.0, 0.0});
+  // 120 scans at 40 Hz; each scan's objects come 0.8 s (32 scans) after it.
+  constexpr int64_t kPeriod = 25'000;
+  constexpr int kLag = 32;
+  int released = 0;
+  for (int i = 0; i < 120 + kLag; ++i) {
+    const int64_t now = 1'000'000 + kPeriod * i;
+    node.on_odometry(now, {});
+    if (i < 120) {
+      scan.utime = now;
+      node.on_scan(scan, now);
+    }
+    if (i >= kLag) {
+      node.on_objects(objects_for(now - kLag * kPeriod));
+    }
+    while (node.poll(now)) {
+      ++released;
+    }
+  }
+  EXPECT_EQ(released, 120);
+  EXPECT_EQ(node.counters().scans_without_objects, 0);
+  EXPECT_EQ(node.counters().stale_objects, 0);
+  EXPECT_FALSE(node.health().objects_missing);
+}
+
 TEST(LocalizerNode, MissingRecognizerStopsTheWaitAndSaysSo) {
   const SmallWorld w;
   LocalizerNode node(w.map, node_options(LocalizerMode::kSlamer), w.robot.lidar.mount);
