@@ -78,6 +78,19 @@ std::string scan_problem(const LaserScan& scan, const InputLimits& limits) {
   return "";
 }
 
+std::string StreamRestart::check(int64_t seq, int64_t utime) {
+  std::string restart;
+  if (seq_ && utime_ && seq < *seq_ && utime > *utime_) {
+    restart = "seq " + std::to_string(*seq_) + " -> " + std::to_string(seq) +
+              format(" after %.2f s", static_cast<double>(utime - *utime_) * 1e-6);
+  }
+  if (!utime_ || utime > *utime_) {
+    seq_ = seq;
+    utime_ = utime;
+  }
+  return restart;
+}
+
 std::string odometry_step_problem(const Pose2& from, int64_t from_utime, const Pose2& to, int64_t to_utime,
                                   const InputLimits& limits) {
   if (!std::isfinite(to.x) || !std::isfinite(to.y) || !std::isfinite(to.theta)) {

@@ -7,6 +7,7 @@
 //     the robot's maximum speed and yaw rate allow over the interval (plus a
 //     margin); a bigger step is a jump (a driver restart, a glitch): it is
 //     reported, not integrated, and the next message is the new reference;
+//   * a seq that goes back while time goes on is the driver restarting (StreamRestart);
 //   * INITIAL_POSE must be finite, on the map, with a positive semi-definite
 //     covariance, and come at most once per `initial_pose_period`.
 // A message far from its stream's time (the future, or well into the past)
@@ -60,6 +61,21 @@ class StreamTime {
   double mean_interval_ = 0.0;        // [s] of accepted messages, smoothed
   std::optional<int64_t> candidate_;  // the last far message
   int agreeing_ = 0;
+};
+
+// A driver's restart seen in its stream: the seq goes back while the time
+// goes on (a new driver process counts from 0 again; a message out of order
+// goes back in both). For odometry it means a new frame: the dead reckoning
+// starts over at the origin, which a small jump check cannot tell from motion
+// when the robot was near it.
+class StreamRestart {
+ public:
+  // "" or e.g. "seq 5123 -> 0 after 0.15 s" for an accepted message.
+  std::string check(int64_t seq, int64_t utime);
+
+ private:
+  std::optional<int64_t> seq_;
+  std::optional<int64_t> utime_;
 };
 
 // Why a scan cannot be used, or "": no time, non-finite or impossible

@@ -79,7 +79,8 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
   // A scan whose objects do not come is processed without them after objects_wait.
   bus_.every(0.01, [this] { publish_ready(); });
   const int64_t start = bus_.now();
-  bus_.every(1.0, [this, start] {
+  // Checked 4x per timeout, so the gap is said at most a quarter of it late.
+  bus_.every(std::clamp(config_.localizer.inputs.scan_timeout / 4.0, 0.01, 1.0), [this, start] {
     if (node_.scans_missing(bus_.now(), start)) {
       char text[96];
       std::snprintf(text, sizeof text, "no scans on %s for %.1f s: no pose", config_.channels.lidar.c_str(),
@@ -133,6 +134,10 @@ void LocalizerProcess::on_scan(const laser_scan_t& message, const ReceiveInfo& i
       refuse_held();
       break;
   }
+  if (const std::string restart = scan_restart_.check(message.seq, scan.utime); !restart.empty()) {
+    // Scans stand alone: nothing to start over; said, as a gap in the input.
+    bus_.note_event(process_status_t::DEGRADED, config_.channels.lidar + "'s driver restarted (" + restart + ")");
+  }
   node_.on_scan(scan, info.receive_utime);
   publish_ready();
 }
@@ -161,6 +166,7 @@ void LocalizerProcess::on_odometry(const odometry_t& m) {
       bus_.log_warning(channel + "'s time moved to " + std::to_string(m.utime) +
                        " (several messages agree): a new reference");
       node_.restart_odometry();
+      odometry_restart_.check(m.seq, m.utime);  // a new reference already
       for (const auto& [utime, held] : held_odometry_) {
         node_.on_odometry(utime, held);
       }
@@ -168,7 +174,11 @@ void LocalizerProcess::on_odometry(const odometry_t& m) {
       break;
     case TimeVerdict::kAccept:
       refuse_held();
-      if (last_odometry_) {
+      if (const std::string restart = odometry_restart_.check(m.seq, m.utime); !restart.empty()) {
+        bus_.note_event(process_status_t::DEGRADED,
+                        channel + "'s driver restarted (" + restart + "): its frame is new, a new reference");
+        node_.restart_odometry();
+      } else if (last_odometry_) {
         const auto& [from_utime, from] = *last_odometry_;
         if (const std::string jump = odometry_step_problem(from, from_utime, pose, m.utime, limits_); !jump.empty()) {
           refuse(channel, jump + ": not integrated, a new reference");

@@ -58,6 +58,8 @@ class LocalizerProcess {
   StreamTime scan_time_;
   StreamTime odometry_time_;
   std::optional<std::pair<int64_t, Pose2>> last_odometry_;
+  StreamRestart scan_restart_;
+  StreamRestart odometry_restart_;
   std::optional<int64_t> last_initial_pose_;  // bus time
   RefusalCounter refused_;
   // Scans far from the stream's time, held until the next ones say whether

@@ -97,6 +97,11 @@ void Bus::set_state(int8_t state, std::string message) {
   health_.set_state(state, std::move(message));
 }
 
+void Bus::note_event(int8_t state, const std::string& message) {
+  log_warning(message);
+  health_.note_event(state, message);
+}
+
 void Bus::count_drop(const std::string& channel, int64_t count) {
   health_.count_drop(channel, channel_stats_t::SUBSCRIBED, count);
 }
@@ -175,7 +180,7 @@ void Bus::end_run() {
 }
 
 void Bus::publish_status() {
-  publish(options_.status_channel, health_.status(now()));
+  publish(options_.status_channel, health_.take_status(now()));
 }
 
 void Bus::flush_error_summary() {

@@ -102,6 +102,9 @@ class Bus {
 
   // Health: state (logged with its name when it changes), drops, errors.
   void set_state(int8_t state, std::string message);
+  // A moment's problem: one warning line, and the next PROCESS_STATUS says it
+  // (ProcessHealth::note_event) even if the state is OK again by then.
+  void note_event(int8_t state, const std::string& message);
   void count_drop(const std::string& channel, int64_t count = 1);
   void count_error(const std::string& what) { health_.count_handler_error(what); }
   void record_processing_time(double seconds) { health_.record_processing_time(seconds); }

@@ -1,5 +1,7 @@
 #include "common/process/process_health.hpp"
 
+#include <algorithm>
+
 #include "slamer/channel_stats_t.hpp"
 
 namespace slamer {
@@ -45,6 +47,35 @@ void ProcessHealth::record_processing_time(double seconds) {
 void ProcessHealth::set_state(int8_t state, std::string message) {
   state_ = state;
   message_ = std::move(message);
+}
+
+void ProcessHealth::note_event(int8_t state, std::string message) {
+  event_state_ = std::max(event_state_, state);
+  if (events_.size() < kEventsKept) {
+    events_.push_back(std::move(message));
+  } else {
+    ++events_more_;
+  }
+}
+
+process_status_t ProcessHealth::take_status(int64_t now_utime) {
+  process_status_t s = status(now_utime);
+  if (!events_.empty()) {
+    s.state = std::max(state_, event_state_);
+    s.message.clear();
+    for (const std::string& e : events_) {
+      s.message += (s.message.empty() ? "" : "; ") + e;
+    }
+    if (events_more_ > 0) {
+      s.message += "; " + std::to_string(events_more_) + " more";
+    }
+    s.message +=
+        " (now " + (message_.empty() ? std::string(state_ == process_status_t::OK ? "OK" : "-") : message_) + ")";
+  }
+  event_state_ = process_status_t::OK;
+  events_.clear();
+  events_more_ = 0;
+  return s;
 }
 
 process_status_t ProcessHealth::status(int64_t now_utime) const {

@@ -32,8 +32,14 @@ class ProcessHealth {
   void record_processing_time(double seconds);
   void set_state(int8_t state, std::string message);
 
+  // A moment's problem (a driver restarted, a stream's gap): the next status
+  // to publish says it, at `state` or worse, whatever the state is by then.
+  void note_event(int8_t state, std::string message);
+
   int8_t state() const { return state_; }
   process_status_t status(int64_t now_utime) const;
+  // status() with the events noted since the last call: the status to publish.
+  process_status_t take_status(int64_t now_utime);
 
   // One line summarizing the decode and handler errors since the last call
   // ("3 decode errors: LIDAR 2 (wrong fingerprint), ODOMETRY 1 (truncated or
@@ -57,6 +63,10 @@ class ProcessHealth {
   int64_t start_utime_;
   int8_t state_ = process_status_t::OK;
   std::string message_;
+  static constexpr std::size_t kEventsKept = 3;
+  int8_t event_state_ = process_status_t::OK;
+  std::vector<std::string> events_;  // since the last take_status(), up to kEventsKept
+  int64_t events_more_ = 0;
   std::map<ChannelKey, ChannelCounters> channels_;
   RollingPercentiles processing_time_;
   int64_t unreported_handler_errors_ = 0;

@@ -68,5 +68,27 @@ TEST(ProcessHealth, StateAndMessage) {
   EXPECT_EQ(status.message, "no ODOMETRY for 2.0 s");
 }
 
+TEST(ProcessHealth, AnEventIsInTheNextPublishedStatusOnly) {
+  ProcessHealth health("p", 1, 0);
+  health.note_event(process_status_t::DEGRADED, "LIDAR's driver restarted");
+  EXPECT_EQ(health.status(1).state, process_status_t::OK);  // the state now
+  process_status_t s = health.take_status(1);
+  EXPECT_EQ(s.state, process_status_t::DEGRADED);
+  EXPECT_EQ(s.message, "LIDAR's driver restarted (now OK)");
+  s = health.take_status(2);  // said once
+  EXPECT_EQ(s.state, process_status_t::OK);
+  EXPECT_EQ(s.message, "");
+  // Worse than the event: the state wins; more events than kept: counted.
+  health.set_state(process_status_t::ERROR, "lost");
+  for (int i = 0; i < 5; ++i) {
+    health.note_event(process_status_t::DEGRADED, "restart " + std::to_string(i));
+  }
+  s = health.take_status(3);
+  EXPECT_EQ(s.state, process_status_t::ERROR);
+  EXPECT_EQ(s.message, "restart 0; restart 1; restart 2; 2 more (now lost)");
+  s = health.take_status(4);
+  EXPECT_EQ(s.message, "lost");
+}
+
 }  // namespace
 }  // namespace slamer

@@ -86,6 +86,16 @@ TEST(InputChecks, OdometryFasterThanTheRobotIsAJump) {
   EXPECT_EQ(odometry_step_problem({0, 0, 0}, kT0, {std::nan(""), 0, 0}, kT0 + 10'000, limits), "not a finite pose");
 }
 
+TEST(InputChecks, ASeqGoingBackWhileTimeGoesOnIsADriversRestart) {
+  StreamRestart stream;
+  EXPECT_EQ(stream.check(7, 1'000'000), "");
+  EXPECT_EQ(stream.check(8, 1'025'000), "");
+  EXPECT_EQ(stream.check(7, 1'000'000), "");  // a late one (out of order): back in both
+  EXPECT_EQ(stream.check(20, 1'350'000), "");  // messages lost: a gap, not a restart
+  EXPECT_EQ(stream.check(0, 1'500'000), "seq 20 -> 0 after 0.15 s");
+  EXPECT_EQ(stream.check(1, 1'525'000), "");
+}
+
 TEST(InputChecks, InitialPoseNeedsAFinitePoseOnTheMapAndAProperCovariance) {
   const std::array<double, 9> good{0.04, 0, 0, 0, 0.04, 0, 0, 0, 0.01};
   EXPECT_EQ(initial_pose_problem({1, 2, 0}, good, true), "");

@@ -97,6 +97,7 @@ int main(int argc, char** argv) {
         cli.add_option("seed", "N", "random seed", "1");
         cli.add_option("out", "FILE", "write an LCM log instead of publishing live");
         cli.add_option("speed", "X", "live mode: simulated seconds per wall-clock second", "1");
+        cli.add_option("laps", "N", "drive the world's path N times over (for long runs)", "1");
       },
       [](const slamer::CommandLine& cli) {
         if (!cli.has("world")) {
@@ -105,11 +106,16 @@ int main(int argc, char** argv) {
         auto config = slamer::load_config<slamer::SimProcessConfig>(cli);
         const int64_t seed = cli.get_int("seed");
         const double speed = cli.get_double("speed");
-        if (seed < 0 || !(speed > 0.0)) {
-          throw slamer::CommandLineError("--seed must be >= 0 and --speed > 0");
+        const int64_t laps = cli.get_int("laps");
+        if (seed < 0 || !(speed > 0.0) || laps < 1 || laps > 1000) {
+          throw slamer::CommandLineError("--seed must be >= 0, --speed > 0 and --laps in [1, 1000]");
         }
         const std::string world_file = cli.get("world");
-        const auto world_options = slamer::load_options<slamer::WorldOptions>(world_file);
+        auto world_options = slamer::load_options<slamer::WorldOptions>(world_file);
+        const std::vector<slamer::PathStep> lap = world_options.path;
+        for (int64_t i = 1; i < laps; ++i) {
+          world_options.path.insert(world_options.path.end(), lap.begin(), lap.end());
+        }
         const auto robot = slamer::load_options<slamer::RobotOptions>(world_options.robot_path);
         slamer::SemanticMap map = slamer::load_semantic_map(world_options.map_path);
         for (const std::string& warning : map.warnings) {
