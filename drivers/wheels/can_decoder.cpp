@@ -78,8 +78,10 @@ std::optional<CanFrame> parse_candump_line(const std::string& line, std::string*
   const auto dot = seconds.find('.');
   uint64_t sec = 0;
   uint64_t frac = 0;
-  if (dot == std::string::npos || seconds.size() - dot - 1 != 6 ||
-      seconds.find_first_not_of("0123456789.") != std::string::npos) {
+  // Digits, one dot, 6 fraction digits and at most 12 of seconds (stoull neither throws nor overflows).
+  if (dot == std::string::npos || dot == 0 || dot > 12 || seconds.size() - dot - 1 != 6 ||
+      seconds.find_first_not_of("0123456789.") != std::string::npos ||
+      seconds.find('.', dot + 1) != std::string::npos) {
     *error = "bad timestamp '" + stamp + "'";
     return std::nullopt;
   }

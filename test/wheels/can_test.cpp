@@ -144,9 +144,12 @@ TEST(Candump, ParsesLogLines) {
   f = parse_candump_line("(1.000001) can0 123#R", &error);
   ASSERT_TRUE(f);
   EXPECT_TRUE(f->rtr);
-  for (const char* bad : {"", "garbage", "(1.5) can0 123#00", "(1.000001) can0 12#00", "(1.000001) can0 123#0",
-                          "(1.000001) can0 123##0112", "(1.000001) can0 800#00", "(1.000001) can0 123#GG",
-                          "(1.000001) can0 123#001122334455667788"}) {
+  for (const char* bad :
+       {"", "garbage", "(1.5) can0 123#00", "(1.000001) can0 12#00", "(1.000001) can0 123#0",
+        "(1.000001) can0 123##0112", "(1.000001) can0 800#00", "(1.000001) can0 123#GG",
+        "(1.000001) can0 123#001122334455667788",
+        // found by fuzz_can_decode: a second dot, no seconds, seconds that overflow
+        "(1..48984) can0 123#00", "(.000001) can0 123#00", "(99999999999999999999999.000001) can0 123#00"}) {
     EXPECT_FALSE(parse_candump_line(bad, &error)) << bad;
     EXPECT_FALSE(error.empty());
   }
