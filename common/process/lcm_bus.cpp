@@ -17,6 +17,11 @@
 
 namespace slamer {
 
+namespace {
+// Per subscribed channel: 10 s of 100 Hz odometry, 25 s of 40 Hz scans (about 9 MB).
+constexpr int kQueuedMessagesPerChannel = 1000;
+}  // namespace
+
 int64_t now_utime() {
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
       .count();
@@ -73,13 +78,18 @@ void LcmBus::start_receiving(const std::string& channel) {
   channels_.push_back(std::make_unique<std::string>(channel));
   // LCM keeps the context pointer; the bus outlives its subscriptions.
   auto* context = new Context{this, channels_.back().get()};
-  lcm_->subscribeFunction(
+  lcm::Subscription* subscription = lcm_->subscribeFunction(
       literal_pattern(channel),
       +[](const lcm::ReceiveBuffer* buffer, const std::string&, Context* self) {
         self->bus->deliver(*self->channel, static_cast<const uint8_t*>(buffer->data), buffer->data_size,
                            buffer->recv_utime);
       },
       context);
+  // LCM's default holds 30 messages a channel and silently discards the rest:
+  // 0.3 s of 100 Hz odometry, so one slow scan update (a global proposal, a
+  // moment without CPU) lost input without a trace. Held here they are counted
+  // and used; a process that falls behind catches up.
+  subscription->setQueueCapacity(kQueuedMessagesPerChannel);
   contexts_.emplace_back(context);
 }
 
