@@ -15,6 +15,9 @@ constexpr std::size_t kOdometryKept = 2000;  // 20 s at 100 Hz
 // objects_wait, in time. A count (it was 16, 0.4 s at 40 Hz) cut the wait short
 // whenever the recognizer lagged more scans than that, however long objects_wait.
 constexpr std::size_t kMaxWaiting = 1024;
+// Scans remembered after they went, to tell objects that came late (a drop of
+// ours) from objects of a scan we never had: 10 s at 40 Hz, far beyond any wait.
+constexpr std::size_t kProcessedKept = 400;
 
 double seconds(int64_t microseconds) {
   return static_cast<double>(microseconds) * 1e-6;
@@ -43,6 +46,7 @@ void LocalizerNode::reset() {
   last_objects_utime_.reset();
   first_scan_utime_.reset();
   pending_.clear();
+  processed_utimes_.clear();
   health_ = {};
   filter_.initialize(start_pose_, start_sigma_);
 }
@@ -159,8 +163,14 @@ void LocalizerNode::on_objects(const LineObjectSet& objects) {
   }
   const auto waiting =
       std::find_if(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.scan.utime == objects.utime; });
-  if (waiting == pending_.end() || waiting->objects) {
-    ++counters_.stale_objects;  // its scan is gone (processed, dropped) or it came twice
+  if (waiting != pending_.end() && waiting->objects) {
+    ++counters_.stale_objects;  // twice
+    return;
+  }
+  if (waiting == pending_.end()) {
+    const bool had_scan =
+        std::find(processed_utimes_.begin(), processed_utimes_.end(), objects.utime) != processed_utimes_.end();
+    ++(had_scan ? counters_.stale_objects : counters_.objects_without_scan);
     return;
   }
   waiting->objects = objects;
@@ -216,6 +226,10 @@ std::optional<Pose2> LocalizerNode::odometry_at(int64_t utime) const {
 
 UpdateResult LocalizerNode::process(const Pending& pending) {
   const int64_t utime = pending.scan.utime;
+  processed_utimes_.push_back(utime);
+  if (processed_utimes_.size() > kProcessedKept) {
+    processed_utimes_.pop_front();
+  }
   if (resume_) {
     start_resumed(utime);
   }

@@ -2,7 +2,9 @@
 //  * keeps odometry to interpolate it to each scan's time;
 //  * pairs each scan with its recognized objects, holding scans (in order) up
 //    to `objects_wait` for them; a scan is released without objects when a
-//    later scan's objects came first, or the recognizer is missing;
+//    later scan's objects came first, or the recognizer is missing; objects
+//    that come after their scan went are counted apart from objects of a scan
+//    that never reached us (lost on the way: not a wait cut short);
 //  * drops stale (duplicate, out-of-order) input and starts over when time
 //    jumps backwards (a log replayed from the top), by one rule (StreamOrder);
 //  * degrades when a stream is missing: without odometry the particles
@@ -21,7 +23,10 @@ namespace slamer {
 struct NodeCounters {
   int64_t stale_scans = 0;  // not newer than the last scan
   int64_t stale_odometry = 0;
-  int64_t stale_objects = 0;  // for no scan still waiting
+  int64_t stale_objects = 0;  // late (their scan went without them) or twice
+  // For a scan that never reached us (UDP lost it here, not at the recognizer):
+  // discarded too, but the loss is the scan's, not a wait cut short.
+  int64_t objects_without_scan = 0;
   int64_t scans_without_objects = 0;
   int64_t scans_without_odometry = 0;
   int64_t resets = 0;            // time went backwards
@@ -113,6 +118,7 @@ class LocalizerNode {
   std::optional<int64_t> first_scan_utime_;
   std::optional<int64_t> last_scan_arrival_;
   std::deque<Pending> pending_;
+  std::deque<int64_t> processed_utimes_;  // the last few, to tell late objects from orphans
   struct Resume {
     Pose2 pose;
     std::vector<double> sigma;

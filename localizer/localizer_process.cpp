@@ -64,7 +64,7 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
   health.add_drop_source(ch.odometry, channel_stats_t::SUBSCRIBED,
                          drops([](const NodeCounters& c) { return c.stale_odometry + c.invalid_odometry; }));
   health.add_drop_source(ch.line_objects, channel_stats_t::SUBSCRIBED,
-                         drops([](const NodeCounters& c) { return c.stale_objects; }));
+                         drops([](const NodeCounters& c) { return c.stale_objects + c.objects_without_scan; }));
   health.add_drop_source(ch.initial_pose, channel_stats_t::SUBSCRIBED,
                          drops([](const NodeCounters& c) { return c.invalid_initial_poses; }));
   for (const std::string& input : {ch.lidar, ch.odometry, ch.initial_pose}) {
@@ -73,6 +73,15 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
   bus_.every(1.0, [this] {
     if (const std::string summary = refused_.take_summary(); !summary.empty()) {
       bus_.log_warning(summary);
+    }
+    // Objects of scans we do not have, beyond the scans we refused: the
+    // recognizer had them and we did not, datagrams lost to us (a full receive
+    // buffer: see net.core.rmem_max in the README).
+    const int64_t lost = node_.counters().objects_without_scan - refused_.total(config_.channels.lidar);
+    if (lost > scans_lost_said_) {
+      bus_.log_warning("at least " + std::to_string(lost - scans_lost_said_) + " scans on " + config_.channels.lidar +
+                       " never reached us (their " + config_.channels.line_objects + " did)");
+      scans_lost_said_ = lost;
     }
   });
 

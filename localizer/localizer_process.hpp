@@ -69,6 +69,7 @@ class LocalizerProcess {
   std::vector<std::pair<int64_t, Pose2>> held_odometry_;  // the same for odometry
   int64_t last_particles_utime_;
   int64_t scans_published_ = 0;
+  int64_t scans_lost_said_ = 0;  // scans lost on the way already warned about
   bool resume_reported_ = false;
 };
 

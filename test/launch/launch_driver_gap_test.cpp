@@ -115,7 +115,7 @@ TEST(SlamerLaunch, Kill9OfADriverIsAGapTheLocalizerReportsAsDegradedAndRidesOut)
   EXPECT_EQ(launch.wait(30.0), std::optional<int>(0)) << launch.stderr_text();
   // Its closing line counts its resets (time going back, a new start): none. Each restart was seen.
   const std::string log = test::read_file(dir + "/log/localizer.log");
-  EXPECT_NE(log.find(" 0 resets)"), std::string::npos) << log;
+  EXPECT_NE(log.find(" 0 resets;"), std::string::npos) << log;
   EXPECT_EQ(test::count(log, "ODOMETRY's driver restarted (seq "), 1u) << log;
   EXPECT_EQ(test::count(log, "LIDAR's driver restarted (seq "), 1u) << log;
   const std::string spawns = test::read_file(dir + "/log/supervisord.log");

@@ -86,6 +86,12 @@ TEST(LocalizerNode, ScansWaitInOrderForTheirObjects) {
   node.on_objects(objects_for(1'000'000));
   node.on_objects(objects_for(1'025'000));
   EXPECT_EQ(node.counters().stale_objects, 2);
+  EXPECT_EQ(node.counters().objects_without_scan, 0);
+  // Objects of a scan that never came here (UDP lost it on the way to us
+  // alone): not late, counted apart, and the third scan still waits.
+  node.on_objects(objects_for(1'037'500));
+  EXPECT_EQ(node.counters().objects_without_scan, 1);
+  EXPECT_EQ(node.counters().stale_objects, 2);
   // The third scan goes without objects once objects_wait has passed.
   EXPECT_FALSE(node.poll(1'149'000).has_value());
   ASSERT_TRUE(node.poll(1'150'000).has_value());
