@@ -52,6 +52,32 @@ TEST(BenchScoring, OnePosePerScanAndTheConfusionTable) {
   EXPECT_THROW(score_poses(poses, {}), std::invalid_argument);
 }
 
+TEST(BenchScoring, StatusHonestyExcusesTheFirstTwoSecondsOfEachStretchFarOff) {
+  // 10 Hz; far off (1 m) from 1.0 s to 4.9 s and again from 6.0 s to 6.9 s.
+  std::vector<BenchPose> poses;
+  std::vector<Pose2> reference;
+  for (int k = 0; k < 80; ++k) {
+    const double t = 0.1 * k;
+    const bool far = (k >= 10 && k < 50) || (k >= 60 && k < 70);
+    // OK for the first 3 s of the first stretch (1 s too long), then UNCERTAIN; the
+    // second stretch never flagged, but shorter than the grace; LOST once while close.
+    const BenchStatus status =
+        k >= 40 && k < 50 ? BenchStatus::kUncertain : (k == 75 ? BenchStatus::kLost : BenchStatus::kOk);
+    poses.push_back({t, {far ? 1.0 : 0.05, 0.0, 0.0}, status, true});
+    reference.push_back({0.0, 0.0, 0.0});
+  }
+  const StatusHonesty h = score_poses(poses, reference).honesty;
+  EXPECT_EQ(h.far_after_grace, 20);  // 3.0-4.9 s; the second stretch is all grace
+  EXPECT_EQ(h.far_after_grace_flagged, 10);
+  EXPECT_DOUBLE_EQ(h.far_flagged_fraction(), 0.5);
+  EXPECT_EQ(h.close, 30);
+  EXPECT_EQ(h.close_lost, 1);
+  EXPECT_NEAR(h.close_lost_fraction(), 1.0 / 30.0, 1e-12);
+  EXPECT_DOUBLE_EQ(StatusHonesty{}.far_flagged_fraction(), 1.0);
+  const auto json = nlohmann::json::parse(summary_json(score_poses(poses, reference), {}));
+  EXPECT_DOUBLE_EQ(json["status_honesty"]["far_flagged_fraction"].get<double>(), 0.5);
+}
+
 TEST(BenchFiles, LocalizerConfigKeepsEverythingElse) {
   const std::string config = std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml";
   const std::string yaml = bench_localizer_config(config, {123, 3, "/m/map.yaml", "/r/robot.yaml"});

@@ -97,12 +97,15 @@ int bench(const CommandLine& cli) {
     log_line("slamer-bench", LogLevel::kWarning,
              std::to_string(missing) + " scans had no POSE: poses.txt repeats the previous pose for them");
   }
-  char text[300];
+  char text[400];
   std::snprintf(text, sizeof text,
                 "%lld scans: position error mean %.1f cm (std %.1f, max %.1f), heading %.2f deg, lost %.1f %%, "
+                "status: %.1f %% of %lld far flagged after 2 s, %.2f %% of close LOST, "
                 "%.3f ms per scan (CPU, start-up excluded); %s",
                 static_cast<long long>(score.scans), score.position.mean * 100, score.position.std * 100,
                 score.position.max * 100, score.heading.mean * 180 / 3.14159265358979, score.fraction_lost * 100,
+                score.honesty.far_flagged_fraction() * 100, static_cast<long long>(score.honesty.far_after_grace),
+                score.honesty.close_lost_fraction() * 100,
                 std::max(0.0, info.cpu_seconds - info.startup_cpu_seconds) / std::max<double>(1, score.scans - 1) * 1e3,
                 (dir / "summary.json").c_str());
   log_line("slamer-bench", LogLevel::kInfo, text);

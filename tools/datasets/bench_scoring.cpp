@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 
 namespace slamer {
@@ -81,6 +82,14 @@ std::vector<BenchPose> poses_per_scan(const std::vector<int64_t>& scan_utimes, c
   return poses;
 }
 
+double StatusHonesty::far_flagged_fraction() const {
+  return far_after_grace == 0 ? 1.0
+                              : static_cast<double>(far_after_grace_flagged) / static_cast<double>(far_after_grace);
+}
+double StatusHonesty::close_lost_fraction() const {
+  return close == 0 ? 0.0 : static_cast<double>(close_lost) / static_cast<double>(close);
+}
+
 BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Pose2>& reference) {
   if (poses.size() != reference.size()) {
     throw std::invalid_argument("score_poses: one reference pose per scan is needed");
@@ -89,6 +98,7 @@ BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Po
   score.scans = static_cast<int64_t>(poses.size());
   std::vector<double> headings;
   int64_t lost = 0;
+  std::optional<double> far_since;  // the log time the error passed kLost
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const double e = std::hypot(poses[k].pose.x - reference[k].x, poses[k].pose.y - reference[k].y);
     score.position_errors.push_back(e);
@@ -97,6 +107,16 @@ BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Po
     score.scans_without_pose += poses[k].has_report ? 0 : 1;
     const int column = e < kClose ? 0 : (e <= kLost ? 1 : 2);
     ++score.confusion[static_cast<std::size_t>(poses[k].status)][static_cast<std::size_t>(column)];
+    const BenchStatus status = poses[k].status;
+    far_since = e > kLost ? far_since.value_or(poses[k].t) : std::optional<double>();
+    if (far_since && poses[k].t - *far_since >= kStatusGraceSeconds) {
+      ++score.honesty.far_after_grace;
+      score.honesty.far_after_grace_flagged += status == BenchStatus::kUncertain || status == BenchStatus::kLost;
+    }
+    if (e < kClose) {
+      ++score.honesty.close;
+      score.honesty.close_lost += status == BenchStatus::kLost;
+    }
   }
   score.position = stats_of(score.position_errors);
   score.heading = stats_of(headings);
@@ -145,6 +165,15 @@ std::string summary_json(const BenchScore& score, const BenchRunInfo& info) {
          "wall and cpu: the whole localizer process over the scans; cpu_without_startup: minus a run on "
          "the first scan alone (map loading, field building)"}}},
       {"status_vs_error", confusion},
+      {"status_honesty",
+       {{"far_scans_after_2s", score.honesty.far_after_grace},
+        {"far_flagged_after_2s", score.honesty.far_after_grace_flagged},
+        {"far_flagged_fraction", score.honesty.far_flagged_fraction()},
+        {"close_scans", score.honesty.close},
+        {"close_lost_fraction", score.honesty.close_lost_fraction()},
+        {"note",
+         "of the scans > 0.5 m off, 2 s or more after the error passed 0.5 m: the fraction saying UNCERTAIN "
+         "or LOST (goal >= 0.9); of the scans < 0.2 m off: the fraction saying LOST (goal < 0.01)"}}},
       {"localizer_command", info.command},
   };
   return json.dump(2) + "\n";
