@@ -95,8 +95,17 @@ void read_options(const ConfigReader& reader, StatusOptions* o) {
   reader.read("fit_expected", &o->fit_expected, probability());
   reader.read("fit_uncertain", &o->fit_uncertain, probability());
   reader.read("fit_lost", &o->fit_lost, probability());
+  reader.read("fit_confirm", &o->fit_confirm, probability());
+  reader.read("fit_sustained", &o->fit_sustained, probability());
+  reader.read("fit_sustained_time", &o->fit_sustained_time, in_range(0.1, 600.0));
   if (!(o->fit_lost <= o->fit_uncertain && o->fit_uncertain < o->fit_expected)) {
     reader.fail("fit_uncertain", "needs fit_lost <= fit_uncertain < fit_expected");
+  }
+  if (!(o->fit_uncertain <= o->fit_confirm && o->fit_confirm <= o->fit_expected)) {
+    reader.fail("fit_confirm", "needs fit_uncertain <= fit_confirm <= fit_expected");
+  }
+  if (!(o->fit_uncertain <= o->fit_sustained && o->fit_sustained <= o->fit_expected)) {
+    reader.fail("fit_sustained", "needs fit_uncertain <= fit_sustained <= fit_expected");
   }
 }
 

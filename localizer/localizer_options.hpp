@@ -79,7 +79,7 @@ struct SlamerOptions {
 
 // POSE.status. The evidence is the scan fit: the fraction of beams ending
 // within fit_distance of an obstacle of the map at the estimate
-// (scan_fit.hpp), smoothed over about 10 scans.
+// (scan_fit.hpp), smoothed over about 10 scans, and over fit_sustained_time.
 struct StatusOptions {
   double uncertain_position_sigma = 0.5;   // [m] particles spread wider: UNCERTAIN
   double uncertain_ess_fraction = 0.05;    // ESS below this * particles: a few particles carry it all, UNCERTAIN
@@ -89,6 +89,14 @@ struct StatusOptions {
   double fit_expected = 0.9;   // typical fit at a correct pose: motion noise as configured at or above it
   double fit_uncertain = 0.5;  // smoothed fit below this: UNCERTAIN
   double fit_lost = 0.3;       // below this for lost_after scans: LOST (until above fit_uncertain) and recovery
+  // A global search (after LOST, or on demand) ends only when the smoothed fit
+  // is this high: a wrong place of a building that looks alike fits about as
+  // well as fit_uncertain, the right one about as well as fit_expected.
+  double fit_confirm = 0.75;
+  // The fit smoothed over fit_sustained_time below fit_sustained: UNCERTAIN. A
+  // look-alike place fits well now and then, a correct pose nearly always.
+  double fit_sustained = 0.65;
+  double fit_sustained_time = 10.0;  // [s]
   bool operator==(const StatusOptions&) const = default;
 };
 

@@ -92,10 +92,13 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   low_likelihood_scans_ = 0;
   updated_ = false;
   fit_smoothed_ = options_.status.fit_expected;
+  fit_sustained_ = options_.status.fit_expected;
+  last_fit_utime_.reset();
   fresh_ = true;
   low_fit_scans_ = 0;
   lost_ = false;
   global_ = false;
+  searching_ = false;
   confirm_scans_seen_ = -1;
   noise_gain_ = 1.0;
   increment_.reset();
@@ -307,7 +310,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   const PreparedScan beams = prepare(scan, objects);
   const PreparedObjects prepared_objects = objects != nullptr ? prepare_objects(*objects) : PreparedObjects{};
   const bool use_objects = options_.mode == LocalizerMode::kSlamer;
-  if (lost_ || global_) {
+  if (lost_ || global_ || searching_) {
     inject(beams.points, &result);
   }
   std::vector<double> log_likelihood(particles_.size());
@@ -368,7 +371,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   result.fit = scan_fit(*obstacles_, beams.points, sensor_in_cells(geometry_, result.estimate.pose, mount_),
                         options_.status.fit_distance);
   if (used_beams > 0) {
-    update_fit(result.fit, result.estimate);
+    update_fit(result.fit, result.estimate, scan.utime);
   }
   result.estimate.status = status(result.estimate);
   result.noise_gain = noise_gain_;

@@ -16,7 +16,8 @@
 // sure and taken out of the increments (odometry_correction.hpp);
 // while LOST, or after request for global localization, each scan proposes
 // poses from the whole map (global_proposals.hpp) that replace the least
-// likely particles, so the filter relocalizes by itself.
+// likely particles, so the filter relocalizes by itself; it says OK again only
+// once the scans fit as well as at a correct pose (status.fit_confirm).
 #pragma once
 
 #include <memory>
@@ -111,7 +112,7 @@ class ParticleFilter {
                                 std::vector<std::vector<double>>* class_terms) const;
   void resample();
   void inject(const ScanPoints& points, UpdateResult* result);
-  void update_fit(double fit, const PoseEstimate& e);
+  void update_fit(double fit, const PoseEstimate& e, int64_t utime);
   LocalizerStatus status(const PoseEstimate& e) const;
 
   LocalizerOptions options_;
@@ -134,6 +135,12 @@ class ParticleFilter {
   int low_fit_scans_ = 0;
   bool lost_ = false;
   bool global_ = false;  // global localization under way
+  // Since LOST, until the scans fit as at a correct pose (status.fit_confirm):
+  // proposals go on and the status stays UNCERTAIN, so a look-alike place the
+  // recovery found first is not taken for the right one.
+  bool searching_ = false;
+  double fit_sustained_ = 1.0;  // smoothed over status.fit_sustained_time
+  std::optional<int64_t> last_fit_utime_;
   // require_confirmation(): scans since, and fitting scans in a row (-1: not required).
   int confirm_scans_seen_ = -1;
   int confirmed_in_row_ = 0;

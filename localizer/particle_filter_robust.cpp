@@ -42,7 +42,8 @@ LocalizerStatus ParticleFilter::status(const PoseEstimate& e) const {
   // The scan does not fit the map where the estimate puts it; or spread
   // particles, or a posterior resting on a handful of them (e.g. right after a
   // wide initialization: tight but not yet to be trusted).
-  if (global_ || confirm_scans_seen_ >= 0 || fit_smoothed_ < options_.status.fit_uncertain ||
+  if (global_ || searching_ || confirm_scans_seen_ >= 0 || fit_smoothed_ < options_.status.fit_uncertain ||
+      fit_sustained_ < options_.status.fit_sustained ||
       std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.status.uncertain_position_sigma ||
       e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
     return LocalizerStatus::kUncertain;
@@ -50,14 +51,21 @@ LocalizerStatus ParticleFilter::status(const PoseEstimate& e) const {
   return LocalizerStatus::kOk;
 }
 
-void ParticleFilter::update_fit(double fit, const PoseEstimate& e) {
+void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime) {
   // The first scan after an initialization stands alone: a pose given by
   // hand is no evidence that the scans fit there.
   fit_smoothed_ = fresh_ ? fit : fit_smoothed_ + kFitSmoothing * (fit - fit_smoothed_);
+  // In time, not scans: the same evidence from a 5 Hz and a 40 Hz scanner.
+  const double dt = last_fit_utime_ ? std::clamp(static_cast<double>(utime - *last_fit_utime_) * 1e-6, 0.0,
+                                                 options_.status.fit_sustained_time)
+                                    : 0.0;
+  last_fit_utime_ = utime;
+  fit_sustained_ += (1.0 - std::exp(-dt / options_.status.fit_sustained_time)) * (fit - fit_sustained_);
   fresh_ = false;
   low_fit_scans_ = fit_smoothed_ < options_.status.fit_lost ? low_fit_scans_ + 1 : 0;
   if (low_fit_scans_ >= options_.status.lost_after) {
     lost_ = true;
+    searching_ = true;
   }
   const bool fits = fit_smoothed_ >= options_.status.fit_uncertain;
   if (fits) {
@@ -65,8 +73,10 @@ void ParticleFilter::update_fit(double fit, const PoseEstimate& e) {
   }
   const bool together =
       std::sqrt(std::max(e.covariance[0], e.covariance[4])) <= options_.status.uncertain_position_sigma;
-  if (global_ && fits && together) {
+  if ((global_ || searching_) && fit_smoothed_ >= options_.status.fit_confirm && together) {
     global_ = false;
+    searching_ = false;
+    fit_sustained_ = fit_smoothed_;  // the confirmation is the evidence so far
   }
   if (confirm_scans_seen_ >= 0) {
     ++confirm_scans_seen_;
