@@ -28,6 +28,10 @@ struct LocalizerProcessConfig {
   // clean stop, and a restart resumes from it. Empty: not kept.
   std::string pose_file;
   double pose_save_period = 1.0;  // [s]
+  // Start with global localization (the robot anywhere on the map), as an
+  // INITIAL_POSE with cov[0] < 0 would; a resumed pose is then not used.
+  // From the command line only (--global), not the YAML.
+  bool start_global = false;
 };
 void read_options(const ConfigReader& reader, LocalizerProcessConfig* config);
 

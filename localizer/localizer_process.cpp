@@ -45,6 +45,10 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
   if (!note.empty()) {
     bus_.log_info(note);
   }
+  if (config_.start_global) {
+    node_.request_global_localization();
+    bus_.log_info("global localization from the start: particles over the map's free space");
+  }
   bus_.subscribe<odometry_t>(ch.odometry, [this](const odometry_t& m, const ReceiveInfo&) { on_odometry(m); });
   bus_.subscribe<laser_scan_t>(ch.lidar, [this](const laser_scan_t& m, const ReceiveInfo& info) { on_scan(m, info); });
   bus_.subscribe<line_objects_t>(ch.line_objects, [this](const line_objects_t& m, const ReceiveInfo&) {

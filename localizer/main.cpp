@@ -61,6 +61,7 @@ LocalizerProcessConfig configure(const CommandLine& cli) {
   if (cli.has("pose-file")) {
     config.pose_file = cli.get("pose-file");
   }
+  config.start_global = cli.has("global");
   if (cli.has("initial-pose")) {
     const std::vector<double> pose = cli.get_doubles("initial-pose");
     config.localizer.initial_pose = {pose[0], pose[1], pose[2]};
@@ -102,6 +103,7 @@ int main(int argc, char** argv) {
         cli.add_option("robot", "FILE", "robot YAML, for the LiDAR mount (overrides the config)");
         cli.add_option("pose-file", "FILE", "keep the last good pose here and resume from it (overrides the config)");
         cli.add_multi_option("initial-pose", 3, "X Y THETA", "start here [m, m, rad] (overrides the config)");
+        cli.add_flag("global", "start with global localization: the robot may be anywhere on the map");
         slamer::add_replay_options(cli, "POSE, SEMANTIC_OBJECTS and PARTICLES");
       },
       slamer::run);
