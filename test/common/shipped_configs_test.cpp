@@ -107,6 +107,7 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
          load_options<RobotOptions>(config.robot);
        }},
       {"robots/icart_mini.yaml", [](const std::string& path) { load_options<RobotOptions>(path); }},
+      {"robots/cmu_wean.yaml", [](const std::string& path) { load_options<RobotOptions>(path); }},
       {"wheels.yaml", [](const std::string& path) { load_options<WheelsConfig>(path); }},
       {"worlds/small_room.yaml", load_world},
       {"worlds/paper_indoor.yaml", load_world},

@@ -8,6 +8,7 @@
 #include "common/config/config_reader.hpp"
 #include "tools/datasets/bench_files.hpp"
 #include "tools/datasets/bench_scoring.hpp"
+#include "tools/datasets/settling.hpp"
 
 namespace slamer {
 namespace {
@@ -76,6 +77,30 @@ TEST(BenchScoring, StatusHonestyExcusesTheFirstTwoSecondsOfEachStretchFarOff) {
   EXPECT_DOUBLE_EQ(StatusHonesty{}.far_flagged_fraction(), 1.0);
   const auto json = nlohmann::json::parse(summary_json(score_poses(poses, reference), {}));
   EXPECT_DOUBLE_EQ(json["status_honesty"]["far_flagged_fraction"].get<double>(), 0.5);
+}
+
+TEST(Settling, FromTheLastJumpOnceNineInTenSayOk) {
+  // 10 Hz: uncertain and jumping about for 3 s, then one more jump at 4 s, then
+  // smooth with one UNCERTAIN in every 20 poses.
+  std::vector<PoseReport> poses;
+  for (int k = 0; k < 100; ++k) {
+    const bool searching = k < 30;
+    const double x = searching ? (k % 2) * 5.0 : (k < 40 ? 10.0 : 20.0) + 0.01 * k;
+    const BenchStatus status = searching || k % 20 == 7 ? BenchStatus::kUncertain : BenchStatus::kOk;
+    poses.push_back({1'000'000 + 100'000 * k, {x, 1.0, 0.0}, status});
+  }
+  const Settling s = settling(poses);
+  ASSERT_TRUE(s.scan.has_value());
+  EXPECT_EQ(*s.scan, 40);  // the jump to x = 20
+  EXPECT_NEAR(s.seconds, 4.0, 1e-9);
+  EXPECT_NEAR(s.ok_fraction, 67.0 / 100.0, 1e-12);  // 70 after the search, 3 of them UNCERTAIN
+  EXPECT_NEAR(s.end.x, 20.99, 1e-9);
+  // UNCERTAIN from 60 on: no stretch to the end is 90 % OK once the last third says so.
+  for (int k = 60; k < 100; ++k) {
+    poses[static_cast<std::size_t>(k)].status = BenchStatus::kUncertain;
+  }
+  EXPECT_FALSE(settling(poses).scan.has_value());
+  EXPECT_FALSE(settling({}).scan.has_value());
 }
 
 TEST(BenchFiles, LocalizerConfigKeepsEverythingElse) {

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Global localization on the CMU 16-831 Wean Hall logs (no reference, unknown
+# start): converts wean.dat, imports robotdata1-5, runs slamer-localizer
+# --global (lfm, every beam) and prints after how many scans and seconds each
+# run settles (slamer-settle). Run from the repo root after building.
+#   tools/datasets/wean_global.sh [OUT_DIR]
+#   environment: PARTICLES (5000), SEEDS ("1"), DATASETS (folder of the logs)
+set -euo pipefail
+out=${1:-wean_output}
+particles=${PARTICLES:-5000}
+seeds=${SEEDS:-1}
+data=${DATASETS:-../shared/datasets/cmu_wean_16831}
+if [ ! -d "$data" ]; then
+  echo "wean_global: $data is absent (set DATASETS)" >&2
+  exit 1
+fi
+mkdir -p "$out"
+build/bin/slamer-mapgen --wean "$data/wean.dat.gz" "$out/map" 2>/dev/null
+sed -E "s/^  particles: [0-9]+/  particles: $particles/" config/localizer.yaml > "$out/localizer.yaml"
+for k in 1 2 3 4 5; do
+  build/bin/slamer-carmen2lcm "$data/robotdata$k.log.gz" "$out/log$k.lcm" --format cmu 2>/dev/null
+  for seed in $seeds; do
+    build/bin/slamer-localizer --config "$out/localizer.yaml" --map "$out/map/map.yaml" \
+      --robot config/robots/cmu_wean.yaml --mode lfm --seed "$seed" --global \
+      --replay "$out/log$k.lcm" --out "$out/log$k-p$particles-s$seed.lcm" 2>/dev/null
+    build/bin/slamer-settle "$out/log$k-p$particles-s$seed.lcm"
+  done
+done
