@@ -90,7 +90,7 @@ TEST(InputChecks, ASeqGoingBackWhileTimeGoesOnIsADriversRestart) {
   StreamRestart stream;
   EXPECT_EQ(stream.check(7, 1'000'000), "");
   EXPECT_EQ(stream.check(8, 1'025'000), "");
-  EXPECT_EQ(stream.check(7, 1'000'000), "");  // a late one (out of order): back in both
+  EXPECT_EQ(stream.check(7, 1'000'000), "");   // a late one (out of order): back in both
   EXPECT_EQ(stream.check(20, 1'350'000), "");  // messages lost: a gap, not a restart
   EXPECT_EQ(stream.check(0, 1'500'000), "seq 20 -> 0 after 0.15 s");
   EXPECT_EQ(stream.check(1, 1'525'000), "");
