@@ -31,7 +31,10 @@ struct SyntheticLog {
 
 SyntheticLog write_synthetic_log(bool frozen_clock) {
   SyntheticLog log;
-  log.path = (std::filesystem::temp_directory_path() / "slamer_synthetic_corrected.log").string();
+  // One file per test: ctest runs the two tests that write it side by side.
+  log.path = (std::filesystem::temp_directory_path() /
+              ("slamer_synthetic_corrected_" + std::string(frozen_clock ? "frozen" : "running") + ".log"))
+                 .string();
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, 0.02);
   Pose2 ref{1.0, 2.0, 0.3};
