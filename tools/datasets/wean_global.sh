@@ -15,14 +15,20 @@ if [ ! -d "$data" ]; then
   exit 1
 fi
 mkdir -p "$out"
-build/bin/slamer-mapgen --wean "$data/wean.dat.gz" "$out/map" 2>/dev/null
+# Each step's log goes beside its output; a failing step says which file to read.
+step() {
+  local log=$1
+  shift
+  "$@" 2>"$log" || { echo "wean_global: $1 failed, see $log" >&2; exit 1; }
+}
+step "$out/map.stderr" build/bin/slamer-mapgen --wean "$data/wean.dat.gz" "$out/map"
 sed -E "s/^  particles: [0-9]+/  particles: $particles/" config/localizer.yaml > "$out/localizer.yaml"
 for k in 1 2 3 4 5; do
-  build/bin/slamer-carmen2lcm "$data/robotdata$k.log.gz" "$out/log$k.lcm" --format cmu 2>/dev/null
+  step "$out/log$k.stderr" build/bin/slamer-carmen2lcm "$data/robotdata$k.log.gz" "$out/log$k.lcm" --format cmu
   for seed in $seeds; do
-    build/bin/slamer-localizer --config "$out/localizer.yaml" --map "$out/map/map.yaml" \
-      --robot config/robots/cmu_wean.yaml --mode lfm --seed "$seed" --global \
-      --replay "$out/log$k.lcm" --out "$out/log$k-p$particles-s$seed.lcm" 2>/dev/null
-    build/bin/slamer-settle "$out/log$k-p$particles-s$seed.lcm"
+    run="$out/log$k-p$particles-s$seed"
+    step "$run.stderr" build/bin/slamer-localizer --config "$out/localizer.yaml" --map "$out/map/map.yaml" \
+      --robot config/robots/cmu_wean.yaml --mode lfm --seed "$seed" --global --replay "$out/log$k.lcm" --out "$run.lcm"
+    build/bin/slamer-settle "$run.lcm"
   done
 done
