@@ -18,6 +18,9 @@ constexpr std::size_t kMaxWaiting = 1024;
 // Scans remembered after they went, to tell objects that came late (a drop of
 // ours) from objects of a scan we never had: 10 s at 40 Hz, far beyond any wait.
 constexpr std::size_t kProcessedKept = 400;
+// Objects held for a scan that has not come yet: 1.6 s at 40 Hz. Reordering
+// between two senders is milliseconds; more is a scan lost on the way here.
+constexpr std::size_t kEarlyKept = 64;
 
 double seconds(int64_t microseconds) {
   return static_cast<double>(microseconds) * 1e-6;
@@ -47,6 +50,8 @@ void LocalizerNode::reset() {
   first_scan_utime_.reset();
   pending_.clear();
   processed_utimes_.clear();
+  last_scan_utime_.reset();
+  early_objects_.clear();
   health_ = {};
   filter_.initialize(start_pose_, start_sigma_);
 }
@@ -151,7 +156,37 @@ void LocalizerNode::on_scan(const LaserScan& scan, int64_t arrival_utime) {
   if (!first_scan_utime_) {
     first_scan_utime_ = scan.utime;
   }
-  pending_.push_back({scan, arrival_utime, std::nullopt});
+  last_scan_utime_ = scan.utime;
+  pending_.push_back({scan, arrival_utime, take_early(scan.utime)});
+}
+
+void LocalizerNode::hold_early(const LineObjectSet& objects) {
+  const auto later = std::find_if(early_objects_.begin(), early_objects_.end(),
+                                  [&](const LineObjectSet& held) { return held.utime >= objects.utime; });
+  if (later != early_objects_.end() && later->utime == objects.utime) {
+    ++counters_.stale_objects;  // twice
+    return;
+  }
+  early_objects_.insert(later, objects);
+  if (early_objects_.size() > kEarlyKept) {
+    early_objects_.pop_front();
+    ++counters_.objects_without_scan;
+  }
+}
+
+std::optional<LineObjectSet> LocalizerNode::take_early(int64_t scan_utime) {
+  // Held objects of scans before this one: those scans would be stale now.
+  while (!early_objects_.empty() && early_objects_.front().utime < scan_utime) {
+    early_objects_.pop_front();
+    ++counters_.objects_without_scan;
+  }
+  if (early_objects_.empty() || early_objects_.front().utime != scan_utime) {
+    return std::nullopt;
+  }
+  std::optional<LineObjectSet> objects = std::move(early_objects_.front());
+  early_objects_.pop_front();
+  ++counters_.objects_before_scan;
+  return objects;
 }
 
 void LocalizerNode::on_objects(const LineObjectSet& objects) {
@@ -168,6 +203,10 @@ void LocalizerNode::on_objects(const LineObjectSet& objects) {
     return;
   }
   if (waiting == pending_.end()) {
+    if (!last_scan_utime_ || objects.utime > *last_scan_utime_) {
+      hold_early(objects);  // its scan may still come
+      return;
+    }
     const bool had_scan =
         std::find(processed_utimes_.begin(), processed_utimes_.end(), objects.utime) != processed_utimes_.end();
     ++(had_scan ? counters_.stale_objects : counters_.objects_without_scan);
@@ -185,16 +224,22 @@ bool LocalizerNode::objects_missing(int64_t scan_utime) const {
 }
 
 std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
+  const bool flush = now_utime == std::numeric_limits<int64_t>::max();
   if (pending_.empty()) {
+    if (flush) {  // the end: the scans of held objects will not come
+      counters_.objects_without_scan += static_cast<int64_t>(early_objects_.size());
+      early_objects_.clear();
+    }
     return std::nullopt;
   }
   const Pending& oldest = pending_.front();
   const bool release =
-      !needs_objects() || oldest.objects || now_utime == std::numeric_limits<int64_t>::max() ||
+      !needs_objects() || oldest.objects || flush ||
       now_utime - oldest.arrival_utime >= microseconds(options_.inputs.objects_wait) || pending_.size() > kMaxWaiting ||
       objects_missing(pending_.back().scan.utime) ||
       // The recognizer works in order: a later scan's objects mean these will not come.
-      std::any_of(pending_.begin() + 1, pending_.end(), [](const Pending& p) { return p.objects.has_value(); });
+      std::any_of(pending_.begin() + 1, pending_.end(), [](const Pending& p) { return p.objects.has_value(); }) ||
+      !early_objects_.empty();  // held ones are of later scans
   if (!release) {
     return std::nullopt;
   }

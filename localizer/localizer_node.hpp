@@ -5,6 +5,10 @@
 //    later scan's objects came first, or the recognizer is missing; objects
 //    that come after their scan went are counted apart from objects of a scan
 //    that never reached us (lost on the way: not a wait cut short);
+//  * holds objects that come before their scan (two senders, the driver and
+//    the recognizer: nothing orders their datagrams at this receiver, and one
+//    sandboxed network stack reordered 3 % of them) until the scan comes or a
+//    later scan shows it never will;
 //  * drops stale (duplicate, out-of-order) input and starts over when time
 //    jumps backwards (a log replayed from the top), by one rule (StreamOrder);
 //  * degrades when a stream is missing: without odometry the particles
@@ -27,6 +31,7 @@ struct NodeCounters {
   // For a scan that never reached us (UDP lost it here, not at the recognizer):
   // discarded too, but the loss is the scan's, not a wait cut short.
   int64_t objects_without_scan = 0;
+  int64_t objects_before_scan = 0;  // came first, joined their scan when it came (not a drop)
   int64_t scans_without_objects = 0;
   int64_t scans_without_odometry = 0;
   int64_t resets = 0;            // time went backwards
@@ -102,6 +107,8 @@ class LocalizerNode {
   UpdateResult process(const Pending& pending);
   std::optional<Pose2> odometry_at(int64_t utime) const;
   bool objects_missing(int64_t scan_utime) const;
+  void hold_early(const LineObjectSet& objects);
+  std::optional<LineObjectSet> take_early(int64_t scan_utime);
   void reset();
   void start_resumed(int64_t scan_utime);
 
@@ -118,7 +125,9 @@ class LocalizerNode {
   std::optional<int64_t> first_scan_utime_;
   std::optional<int64_t> last_scan_arrival_;
   std::deque<Pending> pending_;
-  std::deque<int64_t> processed_utimes_;  // the last few, to tell late objects from orphans
+  std::deque<int64_t> processed_utimes_;     // the last few, to tell late objects from orphans
+  std::optional<int64_t> last_scan_utime_;   // the newest scan taken in
+  std::deque<LineObjectSet> early_objects_;  // before their scan, in utime order
   struct Resume {
     Pose2 pose;
     std::vector<double> sigma;

@@ -82,7 +82,8 @@ int run(const CommandLine& cli) {
                 std::to_string(c.scans_without_objects) + " without objects, " +
                 std::to_string(c.scans_without_odometry) + " without odometry, " + std::to_string(c.stale_scans) +
                 " stale, " + std::to_string(c.resets) + " resets; objects: " + std::to_string(c.stale_objects) +
-                " late, " + std::to_string(c.objects_without_scan) + " for scans that never came); peak resident " +
+                " late, " + std::to_string(c.objects_without_scan) + " for scans that never came, " +
+                std::to_string(c.objects_before_scan) + " before their scan); peak resident " +
                 std::to_string(usage.ru_maxrss / 1024) + " MB");
   return code;
 }

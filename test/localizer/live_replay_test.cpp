@@ -141,8 +141,10 @@ TEST(LiveReplay, ALogPlayedLiveGetsEveryScansObjectsAndScoresAsOffline) {
   EXPECT_GE(lidar->messages, scans * 97 / 100);
   EXPECT_EQ(lidar->drops, 0);
   // Objects the localizer discarded are either late (its scan did not wait for
-  // them: must not happen) or of a scan that never reached it (UDP's loss, at
-  // most the 3 % above). Its exit line tells them apart.
+  // them: must not happen) or of a scan that never reached it (UDP's loss):
+  // at most one per scan it lacks. Objects that came before their scan (two
+  // senders: a CI sandbox's network stack did that for 15 of 480) are held
+  // for it, not discarded. Its exit line tells them apart.
   const std::string localizer_log = localizer.stderr_text();
   // "objects: N late, M for scans that never came" (not std::regex: GCC 12's
   // <regex> trips -Wmaybe-uninitialized in the sanitizer build).
@@ -156,7 +158,7 @@ TEST(LiveReplay, ALogPlayedLiveGetsEveryScansObjectsAndScoresAsOffline) {
   ASSERT_NE(localizer_log.find(" for scans that never came", orphans_at), std::string::npos) << localizer_log;
   EXPECT_EQ(late, 0) << "scans did not wait for their objects\n" << localizer_log;
   EXPECT_EQ(objects->drops, late + orphans);
-  EXPECT_LE(orphans, scans * 3 / 100) << localizer_log;
+  EXPECT_LE(orphans, scans - lidar->messages) << localizer_log;
   int64_t poses_out = -1;
   for (const channel_stats_t& c : last.channels) {
     poses_out = c.channel == "POSE" && c.direction == channel_stats_t::PUBLISHED ? c.messages : poses_out;

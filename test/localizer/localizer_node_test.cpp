@@ -99,6 +99,49 @@ TEST(LocalizerNode, ScansWaitInOrderForTheirObjects) {
   EXPECT_FALSE(node.health().objects_missing);  // objects came 125 ms before
 }
 
+TEST(LocalizerNode, ObjectsThatComeBeforeTheirScanWaitForIt) {
+  // The driver and the recognizer send from two sockets: nothing orders their
+  // datagrams at this receiver, so a scan's objects may come first.
+  const SmallWorld w;
+  LocalizerNode node(w.map, node_options(LocalizerMode::kSlamer), w.robot.lidar.mount);
+  node.on_odometry(0, {});
+  LaserScan scan = w.scan_at({2.0, 3.0, 0.0});
+  scan.utime = 1'000'000;
+  node.on_scan(scan);
+  node.on_objects(objects_for(1'000'000));
+  ASSERT_TRUE(node.poll(1'000'000).has_value());
+  // The next two scans' objects before the scans; the second's twice.
+  node.on_objects(objects_for(1'025'000));
+  node.on_objects(objects_for(1'050'000));
+  node.on_objects(objects_for(1'050'000));
+  EXPECT_EQ(node.counters().objects_without_scan, 0);
+  EXPECT_EQ(node.counters().stale_objects, 1);
+  scan.utime = 1'025'000;
+  node.on_scan(scan);
+  std::optional<UpdateResult> second = node.poll(1'025'000);  // with its objects, at once
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(second->semantic.utime, 1'025'000);
+  // Held objects of a scan that never comes: a later scan shows it will not.
+  node.on_objects(objects_for(1'100'000));
+  scan.utime = 1'075'000;  // 1'050'000 was lost on the way here
+  node.on_scan(scan);
+  EXPECT_EQ(node.counters().objects_without_scan, 1);
+  // The waiting scan goes without objects now: the held ones are of a later scan.
+  std::optional<UpdateResult> third = node.poll(1'075'000);
+  ASSERT_TRUE(third.has_value());
+  EXPECT_EQ(node.counters().scans_without_objects, 1);
+  scan.utime = 1'100'000;
+  node.on_scan(scan);
+  ASSERT_TRUE(node.poll(1'100'000).has_value());
+  EXPECT_EQ(node.counters().objects_before_scan, 2);
+  EXPECT_EQ(node.counters().scans_without_objects, 1);
+  // Objects held at the end, their scan never came: counted when the node flushes.
+  node.on_objects(objects_for(1'125'000));
+  EXPECT_FALSE(node.poll(kFlush).has_value());
+  EXPECT_EQ(node.counters().objects_without_scan, 2);
+  EXPECT_EQ(node.counters().stale_objects, 1);
+}
+
 TEST(LocalizerNode, ASlowRecognizerIsWaitedForAsLongAsObjectsWaitHoweverManyScansThatIs) {
   const SmallWorld w;
   LocalizerOptions options = node_options(LocalizerMode::kSlamer);
