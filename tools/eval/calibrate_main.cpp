@@ -1,50 +1,59 @@
-// slamer-calibrate-recognizer: fits the recognizer's class rules to simulated
-// runs. Every recognized object is put in a feature bin (kind, coverage and
-// length for physical lines; length for spatial ones) and labelled with the
-// true world's class where the ground-truth pose puts it; each bin's rule
-// gets the class frequencies seen in it (with a small prior), which is what
-// makes the recognizer's most likely class the most often right one.
-// Prints the rules as YAML for config/recognizer.yaml and the accuracies on stderr.
+// slamer-calibrate-recognizer: fits the recognizer's class rules and the
+// recognition model's temperature (recognizer_fit.hpp) to simulated runs: logs
+// of a given world, or training worlds it generates and simulates itself
+// (seeds 1000 S + 1 + k, below the test worlds' 100000). Prints the rules as
+// YAML for config/recognizer.yaml and the Dirichlet parameters for
+// config/localizer.yaml; accuracies go to stderr.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
-#include <map>
 
-#include "common/process/convert.hpp"
-#include "common/process/decode.hpp"
-#include "common/process/event_log.hpp"
 #include "common/process/log.hpp"
 #include "common/process/process_main.hpp"
-#include "recognizer/line_recognizer.hpp"
-#include "recognizer/recognizer_config.hpp"
-#include "slamer/laser_scan_t.hpp"
-#include "slamer/pose_estimate_t.hpp"
-#include "tools/eval/eval_config.hpp"
+#include "tools/datasets/run_program.hpp"
+#include "tools/eval/recognizer_fit.hpp"
 
 namespace slamer {
 namespace {
 
-// The rule grid: one rule per bin.
-std::vector<ClassRule> bin_rules() {
-  const std::vector<double> coverage{0.0, 0.35, 0.55, 0.75, 0.9, 1.0};
-  const std::vector<double> physical_length{0.0, 0.8, 1.3, 2.0, 1e9};
-  const std::vector<double> spatial_length{0.0, 0.85, 1.15, 1.5, 2.0, 1e9};
-  std::vector<ClassRule> rules;
-  for (std::size_t c = 0; c + 1 < coverage.size(); ++c) {
-    for (std::size_t l = 0; l + 1 < physical_length.size(); ++l) {
-      rules.push_back(
-          {LineKind::kPhysical, coverage[c], coverage[c + 1], physical_length[l], physical_length[l + 1], {}});
-    }
+struct Group {
+  std::string world;
+  std::vector<std::string> logs;
+};
+
+void run_step(const std::string& bin, const std::string& program, const std::vector<std::string>& args) {
+  if (run_program(bin + "/" + program, args).exit_code != 0) {
+    throw std::runtime_error(program + " failed for " + args.back());
   }
-  for (std::size_t l = 0; l + 1 < spatial_length.size(); ++l) {
-    rules.push_back({LineKind::kSpatial, 0.0, 1.0, spatial_length[l], spatial_length[l + 1], {}});
-  }
-  return rules;
 }
 
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3g", v);
-  return text;
+// Training world k: generated and simulated (realistic odometry) into dir/train_SEED.
+Group training_world(const CommandLine& cli, uint64_t seed, const std::string& dir) {
+  const std::string bin = std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
+  const std::string out = dir + "/train_" + std::to_string(seed);
+  Group group{out + "/world/world.yaml", {out + "/sim.lcm"}};
+  if (!std::filesystem::exists(group.logs[0])) {
+    std::vector<std::string> gen{"--seed", std::to_string(seed), "--out", out + "/world"};
+    if (cli.has("gen-config")) {
+      gen.insert(gen.begin(), {"--config", cli.get("gen-config")});
+    }
+    run_step(bin, "slamer-gen-world", gen);
+    run_step(bin, "slamer-sim",
+             {"--world", group.world, "--config", cli.get("sim-config"), "--seed", std::to_string(seed), "--out",
+              group.logs[0] + ".part"});
+    std::filesystem::rename(group.logs[0] + ".part", group.logs[0]);
+  }
+  return group;
+}
+
+std::vector<LabelledObject> joined(const std::vector<std::vector<LabelledObject>>& groups, std::size_t parity) {
+  std::vector<LabelledObject> all;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (parity > 1 || g % 2 == parity) {
+      all.insert(all.end(), groups[g].begin(), groups[g].end());
+    }
+  }
+  return all;
 }
 
 }  // namespace
@@ -53,121 +62,93 @@ std::string number(double v) {
 int main(int argc, char** argv) {
   return slamer::process_main(
       argc, argv, "slamer-calibrate-recognizer",
-      "Fits the recognizer's class rules to simulated logs (LIDAR + GROUND_TRUTH) of a world and prints\n"
-      "them as YAML for the recognizer config; accuracies before and after go to stderr.",
+      "Fits the recognizer's class rules to simulated logs (LIDAR + GROUND_TRUTH) of --world, and/or of\n"
+      "--train-worlds N generated training worlds (seeds 1000 S + 1 ... 1000 S + N, simulated with\n"
+      "--sim-config into --out), and the recognition model's temperature a1 - a2 on worlds the rules\n"
+      "were not fitted on (two folds: even and odd worlds). Prints YAML for config/recognizer.yaml's\n"
+      "rules and config/localizer.yaml's dirichlet_a1/a2; accuracies go to stderr.",
       [](slamer::CommandLine& cli) {
-        cli.add_option("world", "FILE", "the world the logs were simulated in");
+        const std::string config = SLAMER_SOURCE_CONFIG;
+        cli.add_option("world", "FILE", "the world the LOGs were simulated in");
+        cli.add_option("train-worlds", "N", "generated training worlds (at most 999)", "0");
+        cli.add_option("seed", "S", "training seed (0..98)", "0");
+        cli.add_option("out", "DIR", "folder for the training worlds (kept: a second run reuses them)",
+                       "calibration_worlds");
+        cli.add_option("gen-config", "FILE", "slamer-gen-world options (default: its own)");
+        cli.add_option("sim-config", "FILE", "slamer-sim config for the training worlds", config + "/sim.yaml");
         cli.add_option("eval-config", "FILE", "class meanings (config/eval.yaml)");
         cli.add_option("prior", "A", "pseudo-count added to every class of a bin", "0.5");
-        cli.set_positional("LOG", "simulated logs", 1, 32);
+        cli.add_option("min-probability", "P", "the localizer's floor on a probability", "0.001");
+        cli.set_positional("LOG", "simulated logs of --world", 0, 32);
       },
       [](const slamer::CommandLine& cli) {
-        if (!cli.has("world")) {
-          throw slamer::CommandLineError("--world FILE is required");
+        const int64_t train = cli.get_int("train-worlds");
+        const int64_t seed = cli.get_int("seed");
+        if (train < 0 || train > 999 || seed < 0 || seed > 98) {
+          throw slamer::CommandLineError("--train-worlds must be in 0..999 and --seed in 0..98");
+        }
+        if (cli.has("world") == cli.positional().empty()) {
+          throw slamer::CommandLineError("--world FILE and its LOGs go together");
+        }
+        if (!cli.has("world") && train == 0) {
+          throw slamer::CommandLineError("nothing to fit on: give --world FILE LOG... or --train-worlds N");
         }
         const auto config = slamer::load_config<slamer::RecognizerProcessConfig>(cli);
         slamer::EvalConfig eval;
         if (cli.has("eval-config")) {
           eval = slamer::load_options<slamer::EvalConfig>(cli.get("eval-config"));
         }
+        std::vector<slamer::Group> groups;
+        if (cli.has("world")) {
+          groups.push_back({cli.get("world"), cli.positional()});
+        }
+        for (int64_t k = 0; k < train; ++k) {
+          const auto world_seed = static_cast<uint64_t>(1000 * seed + 1 + k);
+          std::cerr << "slamer-calibrate-recognizer: training world " << k + 1 << " of " << train << " (seed "
+                    << world_seed << ")\n";
+          groups.push_back(slamer::training_world(cli, world_seed, cli.get("out")));
+        }
+        std::vector<std::vector<slamer::LabelledObject>> objects;
+        for (const slamer::Group& g : groups) {
+          std::string problems;
+          objects.push_back(slamer::labelled_objects(g.world, g.logs, config, eval, &problems));
+          if (!problems.empty()) {
+            slamer::log_line("slamer-calibrate-recognizer", slamer::LogLevel::kWarning, problems);
+          }
+        }
+        const std::vector<std::string>& classes = config.recognizer.classes;
         const double prior = cli.get_double("prior");
-        const auto world_options = slamer::load_options<slamer::WorldOptions>(cli.get("world"));
-        const auto robot = slamer::load_options<slamer::RobotOptions>(world_options.robot_path);
-        const slamer::TrueWorld world(slamer::load_semantic_map(world_options.map_path), world_options,
-                                      cli.get("world"));
-        const slamer::ObjectLabeler labeler(world, eval.eval);
-        const slamer::LineRecognizer current(config.recognizer);
-        slamer::RecognizerOptions binned = config.recognizer;
-        binned.rules = slamer::bin_rules();
-        const std::size_t classes = config.recognizer.classes.size();
-        std::vector<std::vector<double>> counts(binned.rules.size(), std::vector<double>(classes, 0.0));
-        int64_t objects = 0;
+        const std::vector<slamer::LabelledObject> all = slamer::joined(objects, 2);
+        const slamer::FittedRules fitted = slamer::fit_rules(all, classes, prior);
+        // The temperature from the other fold's rules; one world alone: on itself, said.
+        std::vector<slamer::FittedRules> fold_rules;
+        std::vector<std::vector<slamer::LabelledObject>> fold_objects;
+        for (std::size_t parity = 0; parity < 2 && groups.size() > 1; ++parity) {
+          fold_rules.push_back(slamer::fit_rules(slamer::joined(objects, 1 - parity), classes, prior));
+          fold_objects.push_back(slamer::joined(objects, parity));
+        }
+        std::vector<slamer::HeldOut> held_out;
+        for (std::size_t f = 0; f < fold_rules.size(); ++f) {
+          held_out.push_back({&fold_rules[f], &fold_objects[f]});
+        }
+        if (held_out.empty()) {
+          held_out.push_back({&fitted, &all});
+        }
+        const double temperature = slamer::fit_temperature(held_out, cli.get_double("min-probability"));
         int64_t right_before = 0;
-        std::vector<std::pair<int, int>> samples;  // (bin, true class index in recognizer classes)
-        for (const std::string& path : cli.positional()) {
-          slamer::EventLogReader log(path);
-          std::map<int64_t, slamer::Pose2> truth;
-          int64_t time_origin = -1;
-          while (const std::optional<slamer::LogEvent> e = log.next()) {
-            const auto size = e->data.size();
-            if (e->channel == eval.channels.ground_truth) {
-              slamer::pose_estimate_t m{};
-              if (slamer::decode_message(e->data.data(), size, &m) == slamer::DecodeStatus::kOk) {
-                truth[m.utime] = {m.x, m.y, m.theta};
-                time_origin = time_origin < 0 ? m.utime : time_origin;
-              }
-            } else if (e->channel == config.lidar_channel) {
-              slamer::laser_scan_t m{};
-              if (slamer::decode_message(e->data.data(), size, &m) != slamer::DecodeStatus::kOk) {
-                continue;
-              }
-              const auto pose = truth.find(m.utime);
-              if (pose == truth.end()) {
-                continue;
-              }
-              const slamer::Pose2 sensor = slamer::compose(pose->second, robot.lidar.mount);
-              const double time = static_cast<double>(m.utime - time_origin) * 1e-6;
-              for (const slamer::RecognizedLine& line : current.recognize_with_features(slamer::from_message(m))) {
-                const int label = labeler.label(slamer::transform_point(sensor, line.object.start),
-                                                slamer::transform_point(sensor, line.object.end), time);
-                const auto name = label >= 0 ? eval.eval.classes[static_cast<std::size_t>(label)].name : "";
-                const auto it = std::find(config.recognizer.classes.begin(), config.recognizer.classes.end(), name);
-                if (it == config.recognizer.classes.end()) {
-                  continue;
-                }
-                const int truth_class = static_cast<int>(it - config.recognizer.classes.begin());
-                const double length = (line.object.end - line.object.start).norm();
-                const int bin = slamer::matching_rule(line.object.kind, line.coverage, length, binned);
-                ++objects;
-                right_before += slamer::most_likely(line.object.probs) == truth_class ? 1 : 0;
-                if (bin >= 0) {
-                  counts[static_cast<std::size_t>(bin)][static_cast<std::size_t>(truth_class)] += 1.0;
-                  samples.emplace_back(bin, truth_class);
-                }
-              }
-            }
-          }
-          if (!log.problems().empty()) {
-            slamer::log_line("slamer-calibrate-recognizer", slamer::LogLevel::kWarning, log.problems());
-          }
+        for (const slamer::LabelledObject& o : all) {
+          right_before += o.right_before ? 1 : 0;
         }
-        // Rules from the counts; accuracy of their most likely class on the same objects.
-        int64_t right_after = 0;
-        std::cout << "  rules:   # fitted by slamer-calibrate-recognizer on " << objects << " objects\n";
-        for (std::size_t b = 0; b < binned.rules.size(); ++b) {
-          double total = 0.0;
-          for (const double c : counts[b]) {
-            total += c;
-          }
-          if (total <= 0.0) {
-            continue;
-          }
-          const slamer::ClassRule& rule = binned.rules[b];
-          std::size_t best = 0;
-          for (std::size_t c = 0; c < classes; ++c) {
-            best = counts[b][c] > counts[b][best] ? c : best;
-          }
-          right_after += static_cast<int64_t>(counts[b][best]);
-          std::cout << "    - {kind: " << (rule.kind == slamer::LineKind::kPhysical ? "physical" : "spatial");
-          if (rule.kind == slamer::LineKind::kPhysical) {
-            std::cout << ", min_coverage: " << slamer::number(rule.min_coverage)
-                      << ", max_coverage: " << slamer::number(rule.max_coverage);
-          }
-          std::cout << ", min_length: " << slamer::number(rule.min_length);
-          if (rule.max_length < 1e8) {
-            std::cout << ", max_length: " << slamer::number(rule.max_length);
-          }
-          std::cout << ", probs: {";
-          for (std::size_t c = 0; c < classes; ++c) {
-            std::cout << (c == 0 ? "" : ", ") << config.recognizer.classes[c] << ": "
-                      << slamer::number((counts[b][c] + prior) / (total + prior * static_cast<double>(classes)));
-          }
-          std::cout << "}}   # " << static_cast<int64_t>(total) << " objects\n";
-        }
-        std::fprintf(stderr, "objects: %lld; most likely class right: %.1f %% with the given rules, %.1f %% fitted\n",
-                     static_cast<long long>(objects),
-                     100.0 * static_cast<double>(right_before) / std::max<int64_t>(objects, 1),
-                     100.0 * static_cast<double>(right_after) / std::max<int64_t>(objects, 1));
+        std::cout << slamer::rules_yaml(fitted, classes);
+        std::printf("# config/localizer.yaml, localizer.slamer (a1 - a2 = %.2f, fitted on %s):\n", temperature,
+                    groups.size() > 1 ? "worlds the rules were not fitted on" : "the same world: no held-out one");
+        std::printf("    dirichlet_a1: %.2f\n    dirichlet_a2: 1.0\n", 1.0 + temperature);
+        const double n = static_cast<double>(std::max<std::size_t>(all.size(), 1));
+        std::fprintf(stderr,
+                     "objects: %zu in %zu worlds; most likely class right: %.1f %% with the given rules, %.1f %% "
+                     "fitted\n",
+                     all.size(), groups.size(), 100.0 * static_cast<double>(right_before) / n,
+                     100.0 * static_cast<double>(fitted.right) / n);
         return 0;
       });
 }
