@@ -68,11 +68,11 @@ TEST(BenchScoring, StatusHonestyExcusesTheFirstTwoSecondsOfEachStretchFarOff) {
     reference.push_back({0.0, 0.0, 0.0});
   }
   const StatusHonesty h = score_poses(poses, reference).honesty;
-  EXPECT_EQ(h.far_after_grace, 20);  // 3.0-4.9 s; the second stretch is all grace
-  EXPECT_EQ(h.far_after_grace_flagged, 10);
+  EXPECT_EQ(h.far_after_grace(), 20);  // 3.0-4.9 s; the second stretch is all grace
+  EXPECT_EQ(h.far_after_grace_flagged(), 10);
   EXPECT_DOUBLE_EQ(h.far_flagged_fraction(), 0.5);
-  EXPECT_EQ(h.close, 30);
-  EXPECT_EQ(h.close_lost, 1);
+  EXPECT_EQ(h.close(), 30);
+  EXPECT_EQ(h.close_lost(), 1);
   EXPECT_NEAR(h.close_lost_fraction(), 1.0 / 30.0, 1e-12);
   EXPECT_DOUBLE_EQ(StatusHonesty{}.far_flagged_fraction(), 1.0);
   const auto json = nlohmann::json::parse(summary_json(score_poses(poses, reference), {}));

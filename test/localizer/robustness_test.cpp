@@ -12,6 +12,7 @@
 #include <optional>
 #include <random>
 
+#include "common/stats/status_honesty.hpp"
 #include "localizer/localizer_node.hpp"
 #include "localizer/motion_model.hpp"
 #include "localizer/scan_fit.hpp"
@@ -111,34 +112,14 @@ LocalizerOptions starting_at(const SmallWorld& w) {
   return o;
 }
 
-// Issue 9's honesty bars over steps after `from`: of the scans more than 0.5 m
-// off for over 2 s, the fraction that does not say OK; of the scans under
-// 0.2 m, the fraction that says LOST.
-struct Honesty {
-  int far_late = 0;
-  int far_late_ok = 0;
-  int near = 0;
-  int near_lost = 0;
-};
-Honesty honesty(const std::vector<Step>& steps, double from = 0.0) {
-  Honesty h;
-  double far_since = -1.0;
+// Issue 9's honesty bars (common/stats/status_honesty.hpp) over steps after `from`.
+static_assert(static_cast<int>(LocalizerStatus::kOk) == static_cast<int>(ReportedStatus::kOk) &&
+              static_cast<int>(LocalizerStatus::kLost) == static_cast<int>(ReportedStatus::kLost));
+StatusHonesty honesty(const std::vector<Step>& steps, double from = 0.0) {
+  StatusHonesty h;
   for (const Step& s : steps) {
-    if (s.time < from) {
-      continue;
-    }
-    if (s.error > 0.5) {
-      far_since = far_since < 0.0 ? s.time : far_since;
-      if (s.time - far_since > 2.0) {
-        ++h.far_late;
-        h.far_late_ok += s.status == LocalizerStatus::kOk;
-      }
-    } else {
-      far_since = -1.0;
-    }
-    if (s.error < 0.2) {
-      ++h.near;
-      h.near_lost += s.status == LocalizerStatus::kLost;
+    if (s.time >= from) {
+      h.add(s.time, s.error, static_cast<ReportedStatus>(static_cast<int>(s.status)));
     }
   }
   return h;
@@ -187,9 +168,9 @@ TEST(Robustness, KidnappedItSaysSoThenRelocalizesAndSaysOkAgain) {
   ASSERT_TRUE(lost);
   EXPECT_LT(lost_at - 6.0, 2.0);  // LOST within 2 s
   ASSERT_GT(back_at, 0.0) << "never relocalized";
-  const Honesty h = honesty(loop.steps);
-  EXPECT_EQ(h.far_late_ok, 0);
-  EXPECT_LT(h.near_lost, h.near / 100 + 1);
+  const StatusHonesty h = honesty(loop.steps);
+  EXPECT_EQ(h.far_after_grace_ok(), 0);
+  EXPECT_LT(h.close_lost(), h.close() / 100 + 1);
   // Once back it is right: every OK after the kidnapping within 0.2 m, and the end within 0.1 m.
   for (const Step& s : loop.steps) {
     if (s.time > 6.0 && s.status == LocalizerStatus::kOk) {
@@ -276,9 +257,9 @@ TEST(Robustness, ZeroIncrementWhileTurningIsAbsorbed) {
   ASSERT_TRUE(at_end.has_value());
   const double missed = std::abs(angle_diff(at_end->theta, at_start->theta));
   EXPECT_GT(missed, 0.3);  // the turn the odometry missed [rad]
-  const Honesty h = honesty(loop.steps);
-  EXPECT_EQ(h.far_late_ok, 0);
-  EXPECT_LT(h.near_lost, h.near / 100 + 1);
+  const StatusHonesty h = honesty(loop.steps);
+  EXPECT_EQ(h.far_after_grace_ok(), 0);
+  EXPECT_LT(h.close_lost(), h.close() / 100 + 1);
   for (const Step& s : loop.steps) {
     if (s.status == LocalizerStatus::kOk) {
       EXPECT_LT(s.error, 0.3) << "OK at " << s.time << " s while " << s.error << " m off";

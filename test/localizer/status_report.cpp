@@ -2,7 +2,7 @@
 // For each output log of slamer-localizer on a simulated run: pose error mean /
 // max, the fraction of scans lost (error > 0.5 m), the fraction of OK /
 // UNCERTAIN / LOST per error band, how many scans more than 0.5 m off still
-// say OK more than 2 s after the error passed 0.5 m, and the scan fit (the
+// say OK 2 s or more after the error passed 0.5 m, and the scan fit (the
 // fraction of beams ending within 0.1 m of an obstacle of the map) at the true
 // pose and at the estimate. With --odometry it reports the dead reckoning's
 // heading drift per metre of path instead. A measurement program, not a test.
@@ -17,6 +17,7 @@
 #include "common/process/decode.hpp"
 #include "common/process/event_log.hpp"
 #include "common/robot/robot_options.hpp"
+#include "common/stats/status_honesty.hpp"
 #include "slamer/laser_scan_t.hpp"
 #include "slamer/odometry_t.hpp"
 #include "slamer/pose_estimate_t.hpp"
@@ -122,8 +123,8 @@ int report(const std::string& path, const DistanceField& field, const Pose2& mou
   double counts[3][3] = {};  // band x (OK, UNCERTAIN, LOST)
   double n_band[3] = {};
   double sum = 0.0, max = 0.0;
-  int n = 0, far_late = 0, far_late_ok = 0, far_ok = 0;
-  int64_t far_since = -1;
+  int n = 0, far_ok = 0;
+  StatusHonesty honesty;
   std::vector<double> fit_truth, fit_est[3];
   for (auto& [utime, s] : scans) {
     if (!s.estimate || s.status < pose_estimate_t::OK)
@@ -136,17 +137,8 @@ int report(const std::string& path, const DistanceField& field, const Pose2& mou
     const int st = s.status == pose_estimate_t::OK ? 0 : s.status == pose_estimate_t::UNCERTAIN ? 1 : 2;
     counts[band][st] += 1;
     n_band[band] += 1;
-    if (band == 2) {
-      if (far_since < 0)
-        far_since = utime;
-      far_ok += st == 0;
-      if (utime - far_since > 2'000'000) {
-        ++far_late;
-        far_late_ok += st == 0;
-      }
-    } else {
-      far_since = -1;
-    }
+    far_ok += band == 2 && st == 0;
+    honesty.add(static_cast<double>(utime) * 1e-6, e, static_cast<ReportedStatus>(st + 1));
     const auto scan = lidar.find(utime);
     if (scan != lidar.end() && n % 4 == 0) {
       fit_truth.push_back(fit(field, s.truth, mount, scan->second));
@@ -160,8 +152,11 @@ int report(const std::string& path, const DistanceField& field, const Pose2& mou
                 100.0 * counts[b][0] / std::max(n_band[b], 1.0), 100.0 * counts[b][1] / std::max(n_band[b], 1.0),
                 100.0 * counts[b][2] / std::max(n_band[b], 1.0));
   }
-  std::printf("  > 0.5 m and OK: %d scans; > 0.5 m for over 2 s: %d scans, of which OK %d (%.2f %% UNCERTAIN/LOST)\n",
-              far_ok, far_late, far_late_ok, far_late > 0 ? 100.0 - 100.0 * far_late_ok / far_late : 100.0);
+  std::printf(
+      "  > 0.5 m and OK: %d scans; > 0.5 m for 2 s or more: %lld scans, of which OK %lld (%.2f %% "
+      "UNCERTAIN/LOST)\n",
+      far_ok, static_cast<long long>(honesty.far_after_grace()), static_cast<long long>(honesty.far_after_grace_ok()),
+      100.0 * honesty.far_flagged_fraction());
   std::printf("  fit at truth p1 %.2f p5 %.2f p50 %.2f; at estimate p5/p50:", percentile(fit_truth, 0.01),
               percentile(fit_truth, 0.05), percentile(fit_truth, 0.5));
   for (int b = 0; b < 3; ++b) {

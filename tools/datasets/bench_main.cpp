@@ -104,7 +104,7 @@ int bench(const CommandLine& cli) {
                 "%.3f ms per scan (CPU, start-up excluded); %s",
                 static_cast<long long>(score.scans), score.position.mean * 100, score.position.std * 100,
                 score.position.max * 100, score.heading.mean * 180 / 3.14159265358979, score.fraction_lost * 100,
-                score.honesty.far_flagged_fraction() * 100, static_cast<long long>(score.honesty.far_after_grace),
+                score.honesty.far_flagged_fraction() * 100, static_cast<long long>(score.honesty.far_after_grace()),
                 score.honesty.close_lost_fraction() * 100,
                 std::max(0.0, info.cpu_seconds - info.startup_cpu_seconds) / std::max<double>(1, score.scans - 1) * 1e3,
                 (dir / "summary.json").c_str());

@@ -13,6 +13,9 @@
 namespace slamer {
 namespace {
 
+static_assert(static_cast<int>(BenchStatus::kOk) == static_cast<int>(ReportedStatus::kOk) &&
+              static_cast<int>(BenchStatus::kUncertain) == static_cast<int>(ReportedStatus::kUncertain) &&
+              static_cast<int>(BenchStatus::kLost) == static_cast<int>(ReportedStatus::kLost));
 constexpr double kLost = 0.5;   // [m]
 constexpr double kClose = 0.2;  // [m]
 
@@ -82,14 +85,6 @@ std::vector<BenchPose> poses_per_scan(const std::vector<int64_t>& scan_utimes, c
   return poses;
 }
 
-double StatusHonesty::far_flagged_fraction() const {
-  return far_after_grace == 0 ? 1.0
-                              : static_cast<double>(far_after_grace_flagged) / static_cast<double>(far_after_grace);
-}
-double StatusHonesty::close_lost_fraction() const {
-  return close == 0 ? 0.0 : static_cast<double>(close_lost) / static_cast<double>(close);
-}
-
 BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Pose2>& reference) {
   if (poses.size() != reference.size()) {
     throw std::invalid_argument("score_poses: one reference pose per scan is needed");
@@ -98,7 +93,6 @@ BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Po
   score.scans = static_cast<int64_t>(poses.size());
   std::vector<double> headings;
   int64_t lost = 0;
-  std::optional<double> far_since;  // the log time the error passed kLost
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const double e = std::hypot(poses[k].pose.x - reference[k].x, poses[k].pose.y - reference[k].y);
     score.position_errors.push_back(e);
@@ -107,16 +101,8 @@ BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Po
     score.scans_without_pose += poses[k].has_report ? 0 : 1;
     const int column = e < kClose ? 0 : (e <= kLost ? 1 : 2);
     ++score.confusion[static_cast<std::size_t>(poses[k].status)][static_cast<std::size_t>(column)];
-    const BenchStatus status = poses[k].status;
-    far_since = e > kLost ? far_since.value_or(poses[k].t) : std::optional<double>();
-    if (far_since && poses[k].t - *far_since >= kStatusGraceSeconds) {
-      ++score.honesty.far_after_grace;
-      score.honesty.far_after_grace_flagged += status == BenchStatus::kUncertain || status == BenchStatus::kLost;
-    }
-    if (e < kClose) {
-      ++score.honesty.close;
-      score.honesty.close_lost += status == BenchStatus::kLost;
-    }
+    // BenchStatus and ReportedStatus both follow pose_estimate_t's values.
+    score.honesty.add(poses[k].t, e, static_cast<ReportedStatus>(static_cast<int>(poses[k].status)));
   }
   score.position = stats_of(score.position_errors);
   score.heading = stats_of(headings);
@@ -166,10 +152,10 @@ std::string summary_json(const BenchScore& score, const BenchRunInfo& info) {
          "the first scan alone (map loading, field building)"}}},
       {"status_vs_error", confusion},
       {"status_honesty",
-       {{"far_scans_after_2s", score.honesty.far_after_grace},
-        {"far_flagged_after_2s", score.honesty.far_after_grace_flagged},
+       {{"far_scans_after_2s", score.honesty.far_after_grace()},
+        {"far_flagged_after_2s", score.honesty.far_after_grace_flagged()},
         {"far_flagged_fraction", score.honesty.far_flagged_fraction()},
-        {"close_scans", score.honesty.close},
+        {"close_scans", score.honesty.close()},
         {"close_lost_fraction", score.honesty.close_lost_fraction()},
         {"note",
          "of the scans > 0.5 m off, 2 s or more after the error passed 0.5 m: the fraction saying UNCERTAIN "

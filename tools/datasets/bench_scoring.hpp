@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/geometry/se2.hpp"
+#include "common/stats/status_honesty.hpp"
 
 namespace slamer {
 
@@ -46,20 +47,6 @@ struct ErrorStats {
   double max = 0.0;
 };
 
-// Issue 9's "honest status": of the scans more than 0.5 m off, those 2 s or
-// more after the error passed 0.5 m (the start of that stretch above it) must
-// say UNCERTAIN or LOST; of the scans under 0.2 m off, few may say LOST.
-struct StatusHonesty {
-  int64_t far_after_grace = 0;          // > 0.5 m off, >= 2 s into the stretch
-  int64_t far_after_grace_flagged = 0;  // of them, UNCERTAIN or LOST
-  int64_t close = 0;                    // < 0.2 m off
-  int64_t close_lost = 0;               // of them, LOST
-  // 1 when there is nothing to flag; 0 when none are close.
-  double far_flagged_fraction() const;
-  double close_lost_fraction() const;
-};
-constexpr double kStatusGraceSeconds = 2.0;
-
 struct BenchScore {
   int64_t scans = 0;
   int64_t scans_without_pose = 0;
@@ -68,7 +55,7 @@ struct BenchScore {
   double fraction_lost = 0.0;
   // rows: status (INITIALIZING, OK, UNCERTAIN, LOST); columns: error < 0.2 m, 0.2-0.5 m, > 0.5 m.
   std::array<std::array<int64_t, 3>, 4> confusion{};
-  StatusHonesty honesty;
+  StatusHonesty honesty;                // issue 9's honest-status bars
   std::vector<double> position_errors;  // per scan [m]
 };
 

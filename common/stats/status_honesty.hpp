@@ -1,0 +1,43 @@
+// Whether a localizer's status tells the truth about its error (issue 9's
+// bars), counted scan by scan against a reference: of the scans more than
+// kFar off, those kGraceSeconds or more after the error passed kFar (the start
+// of that stretch above it) must say UNCERTAIN or LOST; of the scans under
+// kClose off, few may say LOST. One count for slamer-bench, the tests and the
+// status report, so the three measure the same thing.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+namespace slamer {
+
+enum class ReportedStatus { kInitializing, kOk, kUncertain, kLost };
+
+class StatusHonesty {
+ public:
+  static constexpr double kFar = 0.5;    // [m]
+  static constexpr double kClose = 0.2;  // [m]
+  static constexpr double kGraceSeconds = 2.0;
+
+  // One scan at `time` [s], in order, `error` [m] off the reference.
+  void add(double time, double error, ReportedStatus status);
+
+  int64_t far_after_grace() const { return far_after_grace_; }
+  int64_t far_after_grace_flagged() const { return far_after_grace_flagged_; }  // UNCERTAIN or LOST
+  int64_t far_after_grace_ok() const { return far_after_grace_ok_; }
+  int64_t close() const { return close_; }
+  int64_t close_lost() const { return close_lost_; }
+  // 1 when there is nothing to flag; 0 when none are close.
+  double far_flagged_fraction() const;
+  double close_lost_fraction() const;
+
+ private:
+  std::optional<double> far_since_;
+  int64_t far_after_grace_ = 0;
+  int64_t far_after_grace_flagged_ = 0;
+  int64_t far_after_grace_ok_ = 0;
+  int64_t close_ = 0;
+  int64_t close_lost_ = 0;
+};
+
+}  // namespace slamer
