@@ -54,7 +54,7 @@ struct SlfmOptions {
 
 // SLAMER (Eqs. (7)-(9)).
 struct SlamerOptions {
-  double dirichlet_a1 = 4.0;      // concentration of the true class
+  double dirichlet_a1 = 1.95;     // concentration of the true class (config/localizer.yaml: fitted)
   double dirichlet_a2 = 1.0;      // of the others (a1 != a2, or the recognition model says nothing)
   double prior_sigma = 0.15;      // [m] sigma_d of the map prior
   double object_weight = 5.0;     // exponent on each object's term (tuned on paper_indoor)
