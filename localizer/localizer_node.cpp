@@ -21,6 +21,9 @@ constexpr std::size_t kProcessedKept = 400;
 // Objects held for a scan that has not come yet: 1.6 s at 40 Hz. Reordering
 // between two senders is milliseconds; more is a scan lost on the way here.
 constexpr std::size_t kEarlyKept = 64;
+// Nor objects further ahead of the newest scan than this: not of a scan on its
+// way (a recognizer's clock gone wrong), and held they would cut every wait short.
+constexpr int64_t kEarlyReach = 1'000'000;  // [us]
 
 double seconds(int64_t microseconds) {
   return static_cast<double>(microseconds) * 1e-6;
@@ -180,6 +183,11 @@ std::optional<LineObjectSet> LocalizerNode::take_early(int64_t scan_utime) {
     early_objects_.pop_front();
     ++counters_.objects_without_scan;
   }
+  // Held before the first scan, and too far ahead of it.
+  while (!early_objects_.empty() && early_objects_.back().utime - scan_utime > kEarlyReach) {
+    early_objects_.pop_back();
+    ++counters_.objects_without_scan;
+  }
   if (early_objects_.empty() || early_objects_.front().utime != scan_utime) {
     return std::nullopt;
   }
@@ -203,7 +211,7 @@ void LocalizerNode::on_objects(const LineObjectSet& objects) {
     return;
   }
   if (waiting == pending_.end()) {
-    if (!last_scan_utime_ || objects.utime > *last_scan_utime_) {
+    if (!last_scan_utime_ || (objects.utime > *last_scan_utime_ && objects.utime - *last_scan_utime_ <= kEarlyReach)) {
       hold_early(objects);  // its scan may still come
       return;
     }

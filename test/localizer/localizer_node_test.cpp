@@ -135,11 +135,40 @@ TEST(LocalizerNode, ObjectsThatComeBeforeTheirScanWaitForIt) {
   ASSERT_TRUE(node.poll(1'100'000).has_value());
   EXPECT_EQ(node.counters().objects_before_scan, 2);
   EXPECT_EQ(node.counters().scans_without_objects, 1);
-  // Objects held at the end, their scan never came: counted when the node flushes.
-  node.on_objects(objects_for(1'125'000));
-  EXPECT_FALSE(node.poll(kFlush).has_value());
+  // Objects an hour ahead (a recognizer's clock gone wrong) are not held: held,
+  // they would release every scan at once. The next scan still waits for its own.
+  node.on_objects(objects_for(1'100'000 + 3'600'000'000LL));
   EXPECT_EQ(node.counters().objects_without_scan, 2);
+  scan.utime = 1'125'000;
+  node.on_scan(scan);
+  EXPECT_FALSE(node.poll(1'125'000).has_value());
+  node.on_objects(objects_for(1'125'000));
+  ASSERT_TRUE(node.poll(1'125'000).has_value());
+  EXPECT_EQ(node.counters().scans_without_objects, 1);
+  // Objects held at the end, their scan never came: counted when the node flushes.
+  node.on_objects(objects_for(1'150'000));
+  EXPECT_FALSE(node.poll(kFlush).has_value());
+  EXPECT_EQ(node.counters().objects_without_scan, 3);
   EXPECT_EQ(node.counters().stale_objects, 1);
+}
+
+TEST(LocalizerNode, ObjectsBeforeTheFirstScanAreHeldOnlyNearIt) {
+  const SmallWorld w;
+  LocalizerNode node(w.map, node_options(LocalizerMode::kSlamer), w.robot.lidar.mount);
+  node.on_odometry(0, {});
+  node.on_objects(objects_for(5'000'000));  // 4 s after the first scan: not of a scan on its way
+  node.on_objects(objects_for(1'000'000));
+  LaserScan scan = w.scan_at({2.0, 3.0, 0.0});
+  scan.utime = 1'000'000;
+  node.on_scan(scan);
+  std::optional<UpdateResult> first = node.poll(1'000'000);  // with its objects, at once
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(node.counters().objects_before_scan, 1);
+  EXPECT_EQ(node.counters().objects_without_scan, 1);
+  EXPECT_EQ(node.counters().scans_without_objects, 0);
+  scan.utime = 1'025'000;  // and the next scan waits for its own
+  node.on_scan(scan);
+  EXPECT_FALSE(node.poll(1'025'000).has_value());
 }
 
 TEST(LocalizerNode, ASlowRecognizerIsWaitedForAsLongAsObjectsWaitHoweverManyScansThatIs) {
