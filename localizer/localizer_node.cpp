@@ -53,7 +53,6 @@ void LocalizerNode::reset() {
   first_scan_utime_.reset();
   pending_.clear();
   processed_utimes_.clear();
-  last_scan_utime_.reset();
   early_objects_.clear();
   health_ = {};
   filter_.initialize(start_pose_, start_sigma_);
@@ -159,7 +158,6 @@ void LocalizerNode::on_scan(const LaserScan& scan, int64_t arrival_utime) {
   if (!first_scan_utime_) {
     first_scan_utime_ = scan.utime;
   }
-  last_scan_utime_ = scan.utime;
   pending_.push_back({scan, arrival_utime, take_early(scan.utime)});
 }
 
@@ -211,7 +209,8 @@ void LocalizerNode::on_objects(const LineObjectSet& objects) {
     return;
   }
   if (waiting == pending_.end()) {
-    if (!last_scan_utime_ || (objects.utime > *last_scan_utime_ && objects.utime - *last_scan_utime_ <= kEarlyReach)) {
+    const std::optional<int64_t>& newest_scan = scan_order_.last();
+    if (!newest_scan || (objects.utime > *newest_scan && objects.utime - *newest_scan <= kEarlyReach)) {
       hold_early(objects);  // its scan may still come
       return;
     }

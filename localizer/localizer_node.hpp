@@ -126,7 +126,6 @@ class LocalizerNode {
   std::optional<int64_t> last_scan_arrival_;
   std::deque<Pending> pending_;
   std::deque<int64_t> processed_utimes_;     // the last few, to tell late objects from orphans
-  std::optional<int64_t> last_scan_utime_;   // the newest scan taken in
   std::deque<LineObjectSet> early_objects_;  // before their scan, in utime order
   struct Resume {
     Pose2 pose;
