@@ -11,7 +11,8 @@
 
 namespace slamer {
 
-enum class ReportedStatus { kInitializing, kOk, kUncertain, kLost };
+// pose_estimate_t status values.
+enum class ReportedStatus : int8_t { kInitializing = 0, kOk = 1, kUncertain = 2, kLost = 3 };
 
 class StatusHonesty {
  public:

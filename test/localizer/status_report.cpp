@@ -138,7 +138,7 @@ int report(const std::string& path, const DistanceField& field, const Pose2& mou
     counts[band][st] += 1;
     n_band[band] += 1;
     far_ok += band == 2 && st == 0;
-    honesty.add(static_cast<double>(utime) * 1e-6, e, static_cast<ReportedStatus>(st + 1));
+    honesty.add(static_cast<double>(utime) * 1e-6, e, static_cast<ReportedStatus>(s.status));
     const auto scan = lidar.find(utime);
     if (scan != lidar.end() && n % 4 == 0) {
       fit_truth.push_back(fit(field, s.truth, mount, scan->second));

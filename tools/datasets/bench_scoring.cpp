@@ -7,17 +7,14 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <optional>
 #include <stdexcept>
 
 namespace slamer {
 namespace {
 
-static_assert(static_cast<int>(BenchStatus::kOk) == static_cast<int>(ReportedStatus::kOk) &&
-              static_cast<int>(BenchStatus::kUncertain) == static_cast<int>(ReportedStatus::kUncertain) &&
-              static_cast<int>(BenchStatus::kLost) == static_cast<int>(ReportedStatus::kLost));
-constexpr double kLost = 0.5;   // [m]
-constexpr double kClose = 0.2;  // [m]
+// Issue 9's bands, the same as the honesty count's.
+constexpr double kLost = StatusHonesty::kFar;
+constexpr double kClose = StatusHonesty::kClose;
 
 ErrorStats stats_of(const std::vector<double>& values) {
   ErrorStats s;
@@ -101,8 +98,7 @@ BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Po
     score.scans_without_pose += poses[k].has_report ? 0 : 1;
     const int column = e < kClose ? 0 : (e <= kLost ? 1 : 2);
     ++score.confusion[static_cast<std::size_t>(poses[k].status)][static_cast<std::size_t>(column)];
-    // BenchStatus and ReportedStatus both follow pose_estimate_t's values.
-    score.honesty.add(poses[k].t, e, static_cast<ReportedStatus>(static_cast<int>(poses[k].status)));
+    score.honesty.add(poses[k].t, e, poses[k].status);
   }
   score.position = stats_of(score.position_errors);
   score.heading = stats_of(headings);

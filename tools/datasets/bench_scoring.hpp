@@ -17,8 +17,7 @@
 
 namespace slamer {
 
-// pose_estimate_t status values.
-enum class BenchStatus : int8_t { kInitializing = 0, kOk = 1, kUncertain = 2, kLost = 3 };
+using BenchStatus = ReportedStatus;  // pose_estimate_t status values
 const char* status_name(BenchStatus status);
 
 struct PoseReport {
