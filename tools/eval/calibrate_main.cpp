@@ -10,8 +10,8 @@
 
 #include "common/process/log.hpp"
 #include "common/process/process_main.hpp"
-#include "tools/datasets/run_program.hpp"
 #include "tools/eval/recognizer_fit.hpp"
+#include "tools/eval_suite/suite_pipeline.hpp"
 
 namespace slamer {
 namespace {
@@ -21,27 +21,17 @@ struct Group {
   std::vector<std::string> logs;
 };
 
-void run_step(const std::string& bin, const std::string& program, const std::vector<std::string>& args) {
-  if (run_program(bin + "/" + program, args).exit_code != 0) {
-    throw std::runtime_error(program + " failed for " + args.back());
-  }
-}
-
-// Training world k: generated and simulated (realistic odometry) into dir/train_SEED.
+// Training world `seed`: generated and simulated (realistic odometry) into
+// dir/train_SEED, unless an earlier run left it there.
 Group training_world(const CommandLine& cli, uint64_t seed, const std::string& dir) {
-  const std::string bin = std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
   const std::string out = dir + "/train_" + std::to_string(seed);
   Group group{out + "/world/world.yaml", {out + "/sim.lcm"}};
   if (!std::filesystem::exists(group.logs[0])) {
-    std::vector<std::string> gen{"--seed", std::to_string(seed), "--out", out + "/world"};
-    if (cli.has("gen-config")) {
-      gen.insert(gen.begin(), {"--config", cli.get("gen-config")});
-    }
-    run_step(bin, "slamer-gen-world", gen);
-    run_step(bin, "slamer-sim",
-             {"--world", group.world, "--config", cli.get("sim-config"), "--seed", std::to_string(seed), "--out",
-              group.logs[0] + ".part"});
-    std::filesystem::rename(group.logs[0] + ".part", group.logs[0]);
+    SuiteSetup setup;
+    setup.bin_dir = std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
+    setup.sim_config = cli.get("sim-config");
+    setup.gen_config = cli.has("gen-config") ? cli.get("gen-config") : "";
+    simulate_world(setup, seed, out);
   }
   return group;
 }

@@ -135,6 +135,25 @@ FittedRules fit_rules(const std::vector<LabelledObject>& objects, const std::vec
 }
 
 double fit_temperature(const std::vector<HeldOut>& folds, double min_probability) {
+  // Objects of one bin and truth add the same term: count them once.
+  struct Tally {
+    const std::vector<double>* probs;
+    std::size_t truth;
+    double count;
+  };
+  std::vector<Tally> tallies;
+  for (const HeldOut& fold : folds) {
+    std::map<std::pair<int, int>, double> counts;  // (bin, truth)
+    for (const LabelledObject& o : *fold.objects) {
+      if (o.bin >= 0 && !fold.rules->probs[static_cast<std::size_t>(o.bin)].empty()) {
+        counts[{o.bin, o.truth}] += 1.0;
+      }
+    }
+    for (const auto& [key, count] : counts) {
+      tallies.push_back(
+          {&fold.rules->probs[static_cast<std::size_t>(key.first)], static_cast<std::size_t>(key.second), count});
+    }
+  }
   // The objective is concave in t (a linear term minus a log-sum-exp): a fine
   // grid finds its maximum.
   double best_t = 1.0;
@@ -142,18 +161,12 @@ double fit_temperature(const std::vector<HeldOut>& folds, double min_probability
   for (int step = 1; step <= 120; ++step) {
     const double t = 0.05 * step;
     double sum = 0.0;
-    for (const HeldOut& fold : folds) {
-      for (const LabelledObject& o : *fold.objects) {
-        if (o.bin < 0 || fold.rules->probs[static_cast<std::size_t>(o.bin)].empty()) {
-          continue;
-        }
-        const std::vector<double>& p = fold.rules->probs[static_cast<std::size_t>(o.bin)];
-        double norm = 0.0;
-        for (const double q : p) {
-          norm += std::exp(t * std::log(std::max(q, min_probability)));
-        }
-        sum += t * std::log(std::max(p[static_cast<std::size_t>(o.truth)], min_probability)) - std::log(norm);
+    for (const Tally& tally : tallies) {
+      double norm = 0.0;
+      for (const double q : *tally.probs) {
+        norm += std::exp(t * std::log(std::max(q, min_probability)));
       }
+      sum += tally.count * (t * std::log(std::max((*tally.probs)[tally.truth], min_probability)) - std::log(norm));
     }
     if (sum > best) {
       best = sum;

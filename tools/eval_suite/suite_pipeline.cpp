@@ -32,16 +32,8 @@ std::string number(double v) {
 // The world, the simulation, the recognizer and the three localizers; returns the world's options.
 WorldOptions run_programs(const SuiteSetup& setup, uint64_t seed, const std::string& directory,
                           const std::vector<std::string>& modes) {
-  std::vector<std::string> gen{"--seed", std::to_string(seed), "--out", directory + "/world"};
-  if (!setup.gen_config.empty()) {
-    gen.insert(gen.end(), {"--config", setup.gen_config});
-  }
-  run(setup, "slamer-gen-world", gen);
-  const std::string world_file = directory + "/world/world.yaml";
-  const std::string sim_log = directory + "/sim.lcm";
+  const auto [world_file, sim_log] = simulate_world(setup, seed, directory);
   const std::string recognized = directory + "/recognized.lcm";
-  run(setup, "slamer-sim",
-      {"--world", world_file, "--config", setup.sim_config, "--seed", std::to_string(seed), "--out", sim_log});
   run(setup, "slamer-recognizer", {"--config", setup.recognizer_config, "--replay", sim_log, "--out", recognized});
   const auto world = load_options<WorldOptions>(world_file);
   std::vector<std::future<void>> pending;
@@ -64,6 +56,22 @@ WorldOptions run_programs(const SuiteSetup& setup, uint64_t seed, const std::str
 }
 
 }  // namespace
+
+std::pair<std::string, std::string> simulate_world(const SuiteSetup& setup, uint64_t seed,
+                                                   const std::string& directory) {
+  std::vector<std::string> gen{"--seed", std::to_string(seed), "--out", directory + "/world"};
+  if (!setup.gen_config.empty()) {
+    gen.insert(gen.end(), {"--config", setup.gen_config});
+  }
+  run(setup, "slamer-gen-world", gen);
+  const std::string world_file = directory + "/world/world.yaml";
+  const std::string sim_log = directory + "/sim.lcm";
+  run(setup, "slamer-sim",
+      {"--world", world_file, "--config", setup.sim_config, "--seed", std::to_string(seed), "--out",
+       sim_log + ".part"});
+  std::filesystem::rename(sim_log + ".part", sim_log);
+  return {world_file, sim_log};
+}
 
 WorldResult run_world(const SuiteSetup& setup, const EvalConfig& eval, uint64_t seed, const std::string& directory) {
   std::filesystem::create_directories(directory);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "tools/eval/eval_config.hpp"
 #include "tools/eval_suite/suite_report.hpp"
@@ -20,6 +21,13 @@ struct SuiteSetup {
   bool keep_logs = false;
   bool reuse_logs = false;  // score the logs a kept earlier run left instead of running again
 };
+
+// slamer-gen-world and slamer-sim (the sim config, sim seed = world seed) for
+// world `seed` into `directory`: world/world.yaml and sim.lcm, returned in this
+// order. sim.lcm appears only once complete. Throws std::runtime_error naming
+// the step that failed.
+std::pair<std::string, std::string> simulate_world(const SuiteSetup& setup, uint64_t seed,
+                                                   const std::string& directory);
 
 // Runs everything in `directory`; throws std::runtime_error naming the step that failed.
 WorldResult run_world(const SuiteSetup& setup, const EvalConfig& eval, uint64_t seed, const std::string& directory);
