@@ -28,12 +28,15 @@ std::string binary_netpbm_problem(const std::string& path) {
     return "";
   }
   long long fields[3] = {};  // width, height, maxval; '#' comments may come between them
-  for (long long& field : fields) {
+  // Bounds keep the size below from overflowing: 2^20 pixels a side (52 km at
+  // 5 cm) and the format's own maxval limit.
+  const long long limits[3] = {1LL << 20, 1LL << 20, 65535};
+  for (int i = 0; i < 3; ++i) {
     while (in >> std::ws && in.peek() == '#') {
       std::string comment;
       std::getline(in, comment);
     }
-    if (!(in >> field) || field <= 0) {
+    if (!(in >> fields[i]) || fields[i] <= 0 || fields[i] > limits[i]) {
       return "has a damaged header";
     }
   }

@@ -338,6 +338,11 @@ TEST(SemanticMap, BadMapsGiveOneLineNamingFileAndProblem) {
   dir.write("header.pgm", "P5\n4 x\n255\n");
   dir.write("bad.yaml", "image: header.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n");
   EXPECT_EQ(load_error(yaml), yaml + ":1: key 'image': image '" + dir.file("header.pgm") + "' has a damaged header");
+  // A side no map has (the size would overflow): the same line (a fuzzer's find).
+  dir.write("header.pgm", "P5\n488888888888885\n48845\n255\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":1: key 'image': image '" + dir.file("header.pgm") + "' has a damaged header");
+  dir.write("header.pgm", "P5\n4 3\n70000\n");
+  EXPECT_EQ(load_error(yaml), yaml + ":1: key 'image': image '" + dir.file("header.pgm") + "' has a damaged header");
 
   cv::imwrite(dir.file("small.png"), cv::Mat(2, 2, CV_8UC3, cv::Scalar(254, 254, 254)));
   dir.write("bad.yaml",
