@@ -60,6 +60,12 @@ struct SlamerOptions {
   double object_weight = 5.0;     // exponent on each object's term (tuned on paper_indoor)
   int object_samples = 3;         // points along an object for its representative distance
   double min_probability = 1e-3;  // recognizer probabilities are floored before log
+  // [m] in the class posteriors (SEMANTIC_OBJECTS), free space's prior counts
+  // only free cells this far from every classed cell: otherwise a doorway or a
+  // no-entry line, one cell from free space, is as much free space as it is a
+  // door, and the prior cannot tell them apart. Not in the particle weights:
+  // there it pulled the pose off doorways (README, "Calibrated across worlds").
+  double free_space_margin = 0.45;
   // The classes the recognizer emits (its config's `classes`, in LINE_OBJECTS).
   std::vector<std::string> recognition_classes = paper_recognition_classes();
   // Recognition class -> the map class whose cells it lies on ("" = free space).

@@ -49,6 +49,10 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
       obstacles_(std::make_shared<const DistanceField>(obstacle_distance_field(map, field_reach(options)))),
       field_(obstacles_, options.lfm),
       free_distance_(std::make_shared<const DistanceField>(free_space_distance_field(map, field_reach(options)))),
+      free_label_distance_(options.slamer.free_space_margin > 0.0
+                               ? std::make_shared<const DistanceField>(free_space_distance_field(
+                                     map, field_reach(options), options.slamer.free_space_margin))
+                               : free_distance_),
       proposals_(std::make_shared<const GlobalProposals>(free_distance_, obstacles_, kClearance)),
       rng_(static_cast<std::mt19937::result_type>(options.seed)),
       correction_(options.motion.odometry_correction_memory) {
@@ -67,6 +71,9 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
 
 std::size_t ParticleFilter::map_memory_bytes() const {
   std::size_t bytes = field_.distances().memory_bytes() + free_distance_->memory_bytes();
+  if (free_label_distance_ != free_distance_) {
+    bytes += free_label_distance_->memory_bytes();
+  }
   for (const auto& field : class_distances_) {
     bytes += field->memory_bytes();
   }
@@ -244,6 +251,7 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
 }
 
 double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
+                                              const DistanceField& free_space,
                                               std::vector<std::vector<double>>* class_terms) const {
   // The sensor pose in grid cells: one transform per particle.
   const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
@@ -272,7 +280,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
       double d = far;
       if (field != kNoField) {
         const DistanceField& distances =
-            field == kFreeSpace ? *free_distance_ : *class_distances_[static_cast<std::size_t>(field)];
+            field == kFreeSpace ? free_space : *class_distances_[static_cast<std::size_t>(field)];
         double sum = off_map;
         for (const Cell& cell : cells) {
           // Fields saturate at or beyond `far` (also with no cell of the class at all).
@@ -295,7 +303,7 @@ double ParticleFilter::object_log_likelihood(const Pose2& pose, const LineObject
   LineObjectSet set;
   set.class_names = classes;
   set.objects = {object};
-  return objects_log_likelihood(pose, prepare_objects(set), nullptr);
+  return objects_log_likelihood(pose, prepare_objects(set), *free_distance_, nullptr);
 }
 
 double ParticleFilter::scan_log_likelihood(const Pose2& pose, const LaserScan& scan) const {
@@ -318,7 +326,8 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     beam_part[i] = beams_log_likelihood(particles_[i].pose, beams);
     log_likelihood[i] =
-        beam_part[i] + (use_objects ? objects_log_likelihood(particles_[i].pose, prepared_objects, nullptr) : 0.0);
+        beam_part[i] +
+        (use_objects ? objects_log_likelihood(particles_[i].pose, prepared_objects, *free_distance_, nullptr) : 0.0);
     particles_[i].log_weight += log_likelihood[i];
   }
   // Normalize in log space.
@@ -345,7 +354,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
       static_cast<std::size_t>(std::max_element(log_likelihood.begin(), log_likelihood.end()) - log_likelihood.begin());
   const Pose2 best_sensor = compose(particles_[best].pose, mount_);
   std::vector<std::vector<double>> class_terms;
-  objects_log_likelihood(particles_[best].pose, prepared_objects, &class_terms);
+  objects_log_likelihood(particles_[best].pose, prepared_objects, *free_label_distance_, &class_terms);
   result.semantic.utime = scan.utime;
   result.semantic.seq = scan.seq;
   result.semantic.class_names = prepared_objects.class_names;

@@ -108,7 +108,8 @@ class ParticleFilter {
   PreparedScan prepare(const LaserScan& scan, const LineObjectSet* objects) const;
   PreparedObjects prepare_objects(const LineObjectSet& objects) const;
   double beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const;
-  double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
+  // `free_space`: the distances free-space classes are scored by (Eq. (7)).
+  double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects, const DistanceField& free_space,
                                 std::vector<std::vector<double>>* class_terms) const;
   void resample();
   void inject(const ScanPoints& points, UpdateResult* result);
@@ -123,7 +124,8 @@ class ParticleFilter {
   std::vector<std::string> map_classes_;
   std::vector<std::shared_ptr<const DistanceField>> class_distances_;  // SLAMER prior: per map class
   std::vector<LikelihoodField> class_fields_;                          // SLFM: per map class, sharing those
-  std::shared_ptr<const DistanceField> free_distance_;                 // for recognition classes on free space
+  std::shared_ptr<const DistanceField> free_distance_;                 // free cells of no class: proposals, weights
+  std::shared_ptr<const DistanceField> free_label_distance_;           // the same, clear of classed cells: posteriors
   std::shared_ptr<const GlobalProposals> proposals_;
   std::vector<Particle> particles_;
   std::mt19937 rng_;

@@ -348,9 +348,18 @@ std::vector<DistanceField> class_distance_fields(const SemanticMap& map, double 
   return fields;
 }
 
-DistanceField free_space_distance_field(const SemanticMap& map, double max_distance) {
-  return field_of(map, max_distance,
-                  [&](std::size_t i) { return map.occupancy[i] == Occupancy::kFree && map.labels[i] < 0; });
+DistanceField free_space_distance_field(const SemanticMap& map, double max_distance, double class_margin) {
+  const auto free_of_class = [&](std::size_t i) { return map.occupancy[i] == Occupancy::kFree && map.labels[i] < 0; };
+  if (class_margin <= 0.0) {
+    return field_of(map, max_distance, free_of_class);
+  }
+  // A step beyond the margin so that "more than class_margin" is not lost to the field's levels.
+  const DistanceField to_class =
+      field_of(map, class_margin + map.geometry.resolution, [&](std::size_t i) { return map.labels[i] >= 0; });
+  const auto width = static_cast<std::size_t>(map.geometry.width);
+  return field_of(map, max_distance, [&](std::size_t i) {
+    return free_of_class(i) && to_class.at(static_cast<int>(i % width), static_cast<int>(i / width)) > class_margin;
+  });
 }
 
 }  // namespace slamer

@@ -263,6 +263,30 @@ TEST(SemanticMap, SemanticLayerWithClassTable) {
   EXPECT_NEAR(free.at(0, 2), 0.1, 1e-6);  // the door, next to free (1, 2)
 }
 
+// A free 3 m x 0.5 m strip at 0.1 m with a no-entry line across it at x = 1.0 m.
+TEST(SemanticMap, FreeSpaceWithAMarginStaysClearOfClassedCells) {
+  SemanticMap map;
+  map.geometry.width = 30;
+  map.geometry.height = 5;
+  map.geometry.resolution = 0.1;
+  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
+  map.labels.assign(map.geometry.size(), -1);
+  map.classes.push_back({"no_entry_line", {255, 0, 0}});
+  for (int y = 0; y < 5; ++y) {
+    map.labels[map.geometry.index(10, y)] = 0;
+  }
+  const DistanceField adjacent = free_space_distance_field(map, 2.55);
+  EXPECT_NEAR(adjacent.at(10, 2), 0.1, 0.006);  // the line is one cell from free space
+  EXPECT_NEAR(adjacent.at(12, 2), 0.0, 1e-6);
+  // With 0.25 m, free space starts 0.3 m from the line (cells 7 and 13).
+  const DistanceField clear = free_space_distance_field(map, 2.55, 0.25);
+  EXPECT_NEAR(clear.at(10, 2), 0.3, 0.006);
+  EXPECT_NEAR(clear.at(12, 2), 0.1, 0.006);
+  EXPECT_NEAR(clear.at(13, 2), 0.0, 1e-6);
+  EXPECT_NEAR(clear.at(7, 2), 0.0, 1e-6);
+  EXPECT_NEAR(clear.at(0, 0), 0.0, 1e-6);
+}
+
 TEST(SemanticMap, IsmYamlFormat) {
   TempDir dir;
   write_occupancy_pgm(dir.file("ogm.pgm"));
