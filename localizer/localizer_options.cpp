@@ -85,6 +85,25 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
       reader.fail("recognition_classes", "class_map's " + problem);
     }
   }
+  if (reader.has("training_prior")) {
+    const ConfigReader prior = reader.section("training_prior");
+    o->training_prior.clear();
+    for (const std::string& name : prior.keys()) {
+      double p = 0.0;
+      prior.read(name, &p, in_range(1e-9, 1.0));
+      if (const std::string problem = recognition_class_problem(*o, name); !problem.empty()) {
+        prior.fail(name, problem);
+      }
+      o->training_prior[name] = p;
+    }
+  }
+  reader.read("training_prior_exponent", &o->training_prior_exponent, in_range(0.0, 1.0));
+  for (const std::string& name : o->recognition_classes) {
+    if (!o->training_prior.empty() && o->training_prior.count(name) == 0) {
+      reader.fail("training_prior",
+                  "lacks the recognition class '" + name + "' (name every one, or write {} to divide nothing out)");
+    }
+  }
 }
 
 void read_options(const ConfigReader& reader, StatusOptions* o) {

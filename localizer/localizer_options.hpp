@@ -54,7 +54,7 @@ struct SlfmOptions {
 
 // SLAMER (Eqs. (7)-(9)).
 struct SlamerOptions {
-  double dirichlet_a1 = 1.95;     // concentration of the true class (config/localizer.yaml: fitted)
+  double dirichlet_a1 = 2.00;     // concentration of the true class (config/localizer.yaml: fitted)
   double dirichlet_a2 = 1.0;      // of the others (a1 != a2, or the recognition model says nothing)
   double prior_sigma = 0.15;      // [m] sigma_d of the map prior
   double object_weight = 5.0;     // exponent on each object's term (tuned on paper_indoor)
@@ -80,6 +80,18 @@ struct SlamerOptions {
                                                {"no_entry_line", "no_entry_line"},
                                                {"free_space", ""},
                                                {"others", "others"}};
+  // Recognition class -> its frequency in the worlds the recognizer's rules
+  // were fitted on (pi of recognition_model.hpp, divided out of the
+  // recognizer's probabilities before Eq. (8)); printed by
+  // slamer-calibrate-recognizer with the rules. Empty: none divided out. Else
+  // it names every recognition class, with values in (0, 1].
+  std::map<std::string, double> training_prior{
+      {"open_door", 0.0464}, {"closed_door", 0.00864},  {"open_glass_door", 0.0184}, {"closed_glass_door", 0.0322},
+      {"fence", 0.0279},     {"no_entry_line", 0.0019}, {"free_space", 0.273},       {"others", 0.591}};
+  // pi is divided out raised to this power: 1 is Bayes' rule for a map prior
+  // that is right, 0 divides nothing out; between, the map prior (which is
+  // wrong where doors changed) does not get the whole of pi's role.
+  double training_prior_exponent = 0.5;
   bool operator==(const SlamerOptions&) const = default;
 };
 

@@ -185,6 +185,16 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
 ParticleFilter::PreparedObjects ParticleFilter::prepare_objects(const LineObjectSet& set) const {
   PreparedObjects prepared;
   prepared.class_names = set.class_names;
+  // pi^exponent per class of the message; a class the config does not know keeps its probability (pi 1).
+  std::vector<double> training_prior;
+  if (!options_.slamer.training_prior.empty()) {
+    for (const std::string& name : set.class_names) {
+      const auto it = options_.slamer.training_prior.find(name);
+      training_prior.push_back(it == options_.slamer.training_prior.end()
+                                   ? 1.0
+                                   : std::pow(it->second, options_.slamer.training_prior_exponent));
+    }
+  }
   for (const LineObject& object : set.objects) {
     const bool finite = object.start.allFinite() && object.end.allFinite() &&
                         std::all_of(object.probs.begin(), object.probs.end(), [](float p) { return std::isfinite(p); });
@@ -198,8 +208,10 @@ ParticleFilter::PreparedObjects ParticleFilter::prepare_objects(const LineObject
       const double t = n == 1 ? 0.5 : static_cast<double>(s) / (n - 1);
       o.samples.push_back(object.start + t * (object.end - object.start));
     }
+    const std::vector<float> likelihoods =
+        divide_out_prior(object.probs, training_prior, options_.slamer.min_probability);
     for (std::size_t l = 0; l < set.class_names.size(); ++l) {
-      o.log_recognition.push_back(log_dirichlet(object.probs, static_cast<int>(l), options_.slamer.dirichlet_a1,
+      o.log_recognition.push_back(log_dirichlet(likelihoods, static_cast<int>(l), options_.slamer.dirichlet_a1,
                                                 options_.slamer.dirichlet_a2, options_.slamer.min_probability));
       int field = kNoField;
       const auto mapped = options_.slamer.class_map.find(set.class_names[l]);

@@ -18,6 +18,24 @@ double log_dirichlet(const std::vector<float>& probs, int true_class, double a1,
   return log_density;
 }
 
+std::vector<float> divide_out_prior(const std::vector<float>& probs, const std::vector<double>& prior,
+                                    double min_probability) {
+  if (prior.empty()) {
+    return probs;
+  }
+  std::vector<double> q(probs.size());
+  double sum = 0.0;
+  for (std::size_t l = 0; l < probs.size(); ++l) {
+    q[l] = std::max(static_cast<double>(probs[l]), min_probability) / prior[l];
+    sum += q[l];
+  }
+  std::vector<float> out(probs.size());
+  for (std::size_t l = 0; l < probs.size(); ++l) {
+    out[l] = static_cast<float>(q[l] / sum);
+  }
+  return out;
+}
+
 double log_normal_density(double d, double sigma) {
   return -0.5 * (d / sigma) * (d / sigma) - std::log(sigma * std::sqrt(2.0 * std::numbers::pi));
 }

@@ -8,6 +8,14 @@
 // distance from the object, placed by the particle's pose, to the nearest
 // cell of class l's map. It depends on the pose and is not renormalized per
 // particle (the published implementation did, and its SLAMER term cancelled).
+//
+// The recognizer's probabilities are class posteriors: its rules are class
+// frequencies per feature bin (slamer-calibrate-recognizer), so they carry the
+// class frequencies pi of the worlds they were fitted on. In SLAMER the map
+// prior takes pi's place, so Eq. (8) is given c-hat with pi divided out,
+// q_l = (c_l / pi_l) / sum_k (c_k / pi_k); otherwise a class that is rare in
+// training (no-entry lines: 0.2 % of the objects) counts as improbable twice,
+// and no map prior brings it back where the map has one.
 #pragma once
 
 #include <vector>
@@ -16,6 +24,11 @@ namespace slamer {
 
 // log Dir(probs; a) with a_l = (l == true_class ? a1 : a2); probs floored at min_probability.
 double log_dirichlet(const std::vector<float>& probs, int true_class, double a1, double a2, double min_probability);
+
+// q above, with every c_l floored at min_probability first; `prior` holds
+// pi_l per class of `probs` (> 0). An empty prior leaves probs as they are.
+std::vector<float> divide_out_prior(const std::vector<float>& probs, const std::vector<double>& prior,
+                                    double min_probability);
 
 // log N(d; 0, sigma) (a density, with its normalizer).
 double log_normal_density(double d, double sigma);

@@ -45,6 +45,13 @@ TEST(RecognizerFit, RulesAreTheBinsClassFrequencies) {
   const std::string yaml = rules_yaml(fitted, kClasses);
   EXPECT_NE(yaml.find("on 11 objects"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("door: 0.739"), std::string::npos) << yaml;
+  // How often each class occurs among the fitted objects: the bins' probabilities weighted by their counts.
+  ASSERT_EQ(fitted.class_prior.size(), 3u);
+  EXPECT_NEAR(fitted.class_prior[0], (10.0 * 8.5 / 11.5 + 1.0 * 0.5 / 2.5) / 11.0, 1e-12);
+  EXPECT_NEAR(fitted.class_prior[2], (10.0 * 1.5 / 11.5 + 1.0 * 1.5 / 2.5) / 11.0, 1e-12);
+  EXPECT_NEAR(fitted.class_prior[0] + fitted.class_prior[1] + fitted.class_prior[2], 1.0, 1e-12);
+  const std::string prior_yaml = training_prior_yaml(fitted, kClasses);
+  EXPECT_NE(prior_yaml.find("    training_prior:\n      door: 0.69\n"), std::string::npos) << prior_yaml;
 }
 
 TEST(RecognizerFit, TemperatureIsOneWhereTheRulesHoldAndBelowWhereTheyPromiseTooMuch) {

@@ -69,10 +69,32 @@ TEST(ClassMapCheck, AKeyTheRecognizerDoesNotEmitIsOneLineWithFileLineAndKey) {
   // Consistent lists load.
   const auto config = parse_options<LocalizerProcessConfig>(
       "localizer:\n  slamer:\n    recognition_classes: [door_open, wall]\n"
-      "    class_map: {door_open: door, wall: others}\n",
+      "    class_map: {door_open: door, wall: others}\n    training_prior: {door_open: 0.1, wall: 0.9}\n",
       "loc.yaml");
   EXPECT_EQ(config.localizer.slamer.class_map.size(), 2u);
   EXPECT_EQ(config.localizer.slamer.class_map.at("door_open"), "door");
+}
+
+TEST(ClassMapCheck, TheTrainingPriorNamesEveryRecognitionClassOnceWithAProbability) {
+  const std::string head =
+      "localizer:\n  slamer:\n    recognition_classes: [door_open, wall]\n"
+      "    class_map: {door_open: door, wall: others}\n    training_prior:\n";
+  EXPECT_EQ(config_error(head + "      door_open: 0.1\n      wal: 0.9\n"),
+            "loc.yaml:7: key 'localizer.slamer.training_prior.wal': 'wal' is not a class the recognizer emits "
+            "(recognition_classes: door_open, wall)");
+  EXPECT_EQ(config_error(head + "      door_open: 0.1\n"),
+            "loc.yaml:6: key 'localizer.slamer.training_prior': lacks the recognition class 'wall' (name every one, or "
+            "write {} to divide nothing out)");
+  EXPECT_EQ(config_error(head + "      door_open: 0\n      wall: 0.9\n"),
+            "loc.yaml:6: key 'localizer.slamer.training_prior.door_open': expected a number in [1e-09, 1], got '0'");
+  const auto config =
+      parse_options<LocalizerProcessConfig>(head + "      door_open: 0.1\n      wall: 0.9\n", "loc.yaml");
+  EXPECT_DOUBLE_EQ(config.localizer.slamer.training_prior.at("wall"), 0.9);
+  EXPECT_EQ(config_error("localizer:\n  slamer:\n    training_prior_exponent: 1.5\n"),
+            "loc.yaml:3: key 'localizer.slamer.training_prior_exponent': expected a number in [0, 1], got '1.5'");
+  // With none the recognizer's probabilities are used as they are.
+  EXPECT_TRUE(parse_options<LocalizerProcessConfig>("localizer:\n  slamer:\n    training_prior: {}\n", "loc.yaml")
+                  .localizer.slamer.training_prior.empty());
 }
 
 TEST(ClassMapCheck, AMapClassTheMapDoesNotDeclareIsOneLineNamingTheKey) {

@@ -121,6 +121,71 @@ TEST(ParticleFilter, SlamerTermDiscriminatesRightFromWrongPose) {
   EXPECT_GT(right, filter.object_log_likelihood({3.4, 3.0, 0.0}, door, classes) + 1.0);
 }
 
+// The recognizer cannot see a no-entry line: over the gap it says free space
+// (0.97), and no-entry line only at 0.003 because such lines were rare where it
+// was fitted. With that training prior divided out (Eq. (8) is given the
+// likelihood, the map prior takes the prior's place), the map's no-entry line
+// decides; without it the same object stays free space.
+TEST(ParticleFilter, AnObjectOnTheMapsNoEntryLineIsOneOnceTheTrainingPriorIsDividedOut) {
+  const SmallWorld w;
+  const std::vector<std::string> classes = RecognizerOptions{}.classes;
+  const Pose2 truth{8.0, 3.0, kPi / 2};  // facing the no-entry line (7..9, 5)
+  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
+  LineObjectSet objects;
+  objects.class_names = classes;
+  LineObject gap;
+  gap.kind = LineKind::kSpatial;
+  gap.start = transform_point(inverse(sensor), {7.2, 5.0});
+  gap.end = transform_point(inverse(sensor), {8.8, 5.0});
+  gap.probs.assign(classes.size(), 0.004f);
+  const auto index = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(classes.begin(), classes.end(), name) - classes.begin());
+  };
+  gap.probs[index("free_space")] = 0.97f;
+  gap.probs[index("no_entry_line")] = 0.003f;
+  objects.objects = {gap};
+  const auto labelled = [&](const LocalizerOptions& options) {
+    ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+    filter.initialize(truth, {0.01, 0.01, 0.005});
+    const UpdateResult result = filter.update(w.scan_at(truth), &objects);
+    EXPECT_EQ(result.semantic.objects.size(), 1u);
+    const std::vector<float>& p = result.semantic.objects.at(0).probs;
+    return classes[static_cast<std::size_t>(std::max_element(p.begin(), p.end()) - p.begin())];
+  };
+  LocalizerOptions options;
+  options.mode = LocalizerMode::kSlamer;
+  options.particles = 50;
+  options.slamer.training_prior.clear();
+  EXPECT_EQ(labelled(options), "free_space");
+  for (const std::string& name : classes) {
+    options.slamer.training_prior[name] = 0.03;
+  }
+  options.slamer.training_prior["free_space"] = 0.27;
+  options.slamer.training_prior["no_entry_line"] = 0.002;
+  options.slamer.training_prior["others"] = 0.59;
+  EXPECT_EQ(labelled(options), "no_entry_line");
+  // Raised to the power 0 the prior divides nothing out.
+  options.slamer.training_prior_exponent = 0.0;
+  EXPECT_EQ(labelled(options), "free_space");
+  options.slamer.training_prior_exponent = 1.0;
+  // Elsewhere, on free floor far from any classed cell, the same object is free space still.
+  gap.start = transform_point(inverse(sensor), {7.2, 3.8});
+  gap.end = transform_point(inverse(sensor), {8.8, 3.8});
+  objects.objects = {gap};
+  EXPECT_EQ(labelled(options), "free_space");
+}
+
+TEST(RecognitionModel, TheTrainingPriorIsDividedOutAndTheResultNormalized) {
+  const std::vector<float> q = divide_out_prior({0.9f, 0.1f, 0.0f}, {0.9, 0.1, 0.5}, 0.01);
+  ASSERT_EQ(q.size(), 3u);
+  // (1, 1, 0.02) / 2.02: the floor applies before the division.
+  EXPECT_NEAR(q[0], 1.0 / 2.02, 1e-6);
+  EXPECT_NEAR(q[1], 1.0 / 2.02, 1e-6);
+  EXPECT_NEAR(q[2], 0.02 / 2.02, 1e-6);
+  const std::vector<float> unchanged = divide_out_prior({0.7f, 0.3f}, {}, 0.01);
+  EXPECT_EQ(unchanged, (std::vector<float>{0.7f, 0.3f}));
+}
+
 // Drives the small room with simulator, recognizer and filter in the loop.
 class FilterLoop : public SimulatorSink {
  public:

@@ -133,6 +133,7 @@ int main(int argc, char** argv) {
         std::printf("# config/localizer.yaml, localizer.slamer (a1 - a2 = %.2f, fitted on %s):\n", temperature,
                     groups.size() > 1 ? "worlds the rules were not fitted on" : "the same world: no held-out one");
         std::printf("    dirichlet_a1: %.2f\n    dirichlet_a2: 1.0\n", 1.0 + temperature);
+        std::cout << slamer::training_prior_yaml(fitted, classes);
         const double n = static_cast<double>(std::max<std::size_t>(all.size(), 1));
         std::fprintf(stderr,
                      "objects: %zu in %zu worlds; most likely class right: %.1f %% with the given rules, %.1f %% "

@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 #include "common/process/convert.hpp"
 #include "common/process/decode.hpp"
 #include "common/process/event_log.hpp"
+#include "localizer/recognition_model.hpp"
 #include "recognizer/line_recognizer.hpp"
 #include "slamer/laser_scan_t.hpp"
 #include "slamer/pose_estimate_t.hpp"
@@ -131,13 +133,26 @@ FittedRules fit_rules(const std::vector<LabelledObject>& objects, const std::vec
     fitted.rules.push_back(rule);
     fitted.objects.push_back(static_cast<int64_t>(total));
   }
+  fitted.class_prior.assign(k, 0.0);
+  double objects_total = 0.0;
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    const double n = std::accumulate(counts[b].begin(), counts[b].end(), 0.0);
+    objects_total += n;
+    for (std::size_t c = 0; c < fitted.probs[b].size(); ++c) {
+      fitted.class_prior[c] += n * fitted.probs[b][c];
+    }
+  }
+  for (double& p : fitted.class_prior) {
+    p = objects_total > 0.0 ? p / objects_total : 1.0 / static_cast<double>(k);
+  }
   return fitted;
 }
 
 double fit_temperature(const std::vector<HeldOut>& folds, double min_probability) {
   // Objects of one bin and truth add the same term: count them once.
   struct Tally {
-    const std::vector<double>* probs;
+    std::vector<double> log_q;  // per class
+    const std::vector<double>* prior;
     std::size_t truth;
     double count;
   };
@@ -150,8 +165,14 @@ double fit_temperature(const std::vector<HeldOut>& folds, double min_probability
       }
     }
     for (const auto& [key, count] : counts) {
-      tallies.push_back(
-          {&fold.rules->probs[static_cast<std::size_t>(key.first)], static_cast<std::size_t>(key.second), count});
+      const std::vector<double>& p = fold.rules->probs[static_cast<std::size_t>(key.first)];
+      const std::vector<float> q =
+          divide_out_prior(std::vector<float>(p.begin(), p.end()), fold.rules->class_prior, min_probability);
+      Tally tally{{}, &fold.rules->class_prior, static_cast<std::size_t>(key.second), count};
+      for (const float v : q) {
+        tally.log_q.push_back(std::log(std::max(static_cast<double>(v), min_probability)));
+      }
+      tallies.push_back(std::move(tally));
     }
   }
   // The objective is concave in t (a linear term minus a log-sum-exp): a fine
@@ -163,10 +184,10 @@ double fit_temperature(const std::vector<HeldOut>& folds, double min_probability
     double sum = 0.0;
     for (const Tally& tally : tallies) {
       double norm = 0.0;
-      for (const double q : *tally.probs) {
-        norm += std::exp(t * std::log(std::max(q, min_probability)));
+      for (std::size_t l = 0; l < tally.log_q.size(); ++l) {
+        norm += (*tally.prior)[l] * std::exp(t * tally.log_q[l]);
       }
-      sum += tally.count * (t * std::log(std::max((*tally.probs)[tally.truth], min_probability)) - std::log(norm));
+      sum += tally.count * (std::log((*tally.prior)[tally.truth]) + t * tally.log_q[tally.truth] - std::log(norm));
     }
     if (sum > best) {
       best = sum;
@@ -198,6 +219,15 @@ std::string rules_yaml(const FittedRules& fitted, const std::vector<std::string>
       out << (c == 0 ? "" : ", ") << classes[c] << ": " << number(rule.probs.at(classes[c]));
     }
     out << "}}   # " << fitted.objects[r] << " objects\n";
+  }
+  return out.str();
+}
+
+std::string training_prior_yaml(const FittedRules& fitted, const std::vector<std::string>& classes) {
+  std::ostringstream out;
+  out << "    training_prior:\n";
+  for (std::size_t c = 0; c < classes.size() && c < fitted.class_prior.size(); ++c) {
+    out << "      " << classes[c] << ": " << number(fitted.class_prior[c]) << "\n";
   }
   return out.str();
 }

@@ -48,6 +48,10 @@ struct FittedRules {
   std::vector<int64_t> objects;            // per rule
   std::vector<std::vector<double>> probs;  // per bin of bin_rules() (normalized), empty where no objects
   int64_t right = 0;                       // objects whose bin's most likely class is theirs
+  // Per class: its share of the objects under the rules (sum over bins of the
+  // bin's objects x its probability, over all objects), the training prior pi
+  // that localizer.slamer.training_prior divides out.
+  std::vector<double> class_prior;
 };
 FittedRules fit_rules(const std::vector<LabelledObject>& objects, const std::vector<std::string>& classes,
                       double prior);
@@ -57,12 +61,17 @@ struct HeldOut {
   const FittedRules* rules = nullptr;
   const std::vector<LabelledObject>* objects = nullptr;
 };
-// The temperature t maximizing sum log(p_truth^t / sum_k p_k^t) over the
-// held-out objects (their bins' probabilities, floored at min_probability);
-// bins the rules never saw are left out. Searched on [0.05, 6].
+// The temperature t maximizing sum log(pi_truth q_truth^t / sum_k pi_k q_k^t)
+// over the held-out objects: q their bins' probabilities with the rules' class
+// prior pi divided out (recognition_model.hpp's divide_out_prior), which is
+// how the localizer uses them with the map prior in pi's place. Bins the rules
+// never saw are left out. Searched on [0.05, 6].
 double fit_temperature(const std::vector<HeldOut>& folds, double min_probability);
 
 // The rules as YAML lines for config/recognizer.yaml's `rules:`.
 std::string rules_yaml(const FittedRules& fitted, const std::vector<std::string>& classes);
+
+// The class prior as config/localizer.yaml's `training_prior:` lines.
+std::string training_prior_yaml(const FittedRules& fitted, const std::vector<std::string>& classes);
 
 }  // namespace slamer
