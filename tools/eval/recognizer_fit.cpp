@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <sstream>
 
 #include "common/process/convert.hpp"
@@ -115,6 +114,8 @@ FittedRules fit_rules(const std::vector<LabelledObject>& objects, const std::vec
   }
   FittedRules fitted;
   fitted.probs.resize(bins.size());
+  fitted.class_prior.assign(k, 0.0);
+  double objects_total = 0.0;
   for (std::size_t b = 0; b < bins.size(); ++b) {
     double total = 0.0;
     for (const double c : counts[b]) {
@@ -128,19 +129,12 @@ FittedRules fit_rules(const std::vector<LabelledObject>& objects, const std::vec
       const double p = (counts[b][c] + prior) / (total + prior * static_cast<double>(k));
       rule.probs[classes[c]] = p;
       fitted.probs[b].push_back(p);
+      fitted.class_prior[c] += total * p;
     }
+    objects_total += total;
     fitted.right += static_cast<int64_t>(*std::max_element(counts[b].begin(), counts[b].end()));
     fitted.rules.push_back(rule);
     fitted.objects.push_back(static_cast<int64_t>(total));
-  }
-  fitted.class_prior.assign(k, 0.0);
-  double objects_total = 0.0;
-  for (std::size_t b = 0; b < bins.size(); ++b) {
-    const double n = std::accumulate(counts[b].begin(), counts[b].end(), 0.0);
-    objects_total += n;
-    for (std::size_t c = 0; c < fitted.probs[b].size(); ++c) {
-      fitted.class_prior[c] += n * fitted.probs[b][c];
-    }
   }
   for (double& p : fitted.class_prior) {
     p = objects_total > 0.0 ? p / objects_total : 1.0 / static_cast<double>(k);
