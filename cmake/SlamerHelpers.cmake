@@ -19,9 +19,13 @@ function(slamer_executable name)
   endif()
 endfunction()
 
-# slamer_test(NAME SOURCES... [DEPS ...] [LABELS ...]): a GoogleTest program run by ctest.
+# slamer_test(NAME SOURCES... [DEPS ...] [LABELS ...] [REAL_TIME]): a GoogleTest program run by ctest.
+# REAL_TIME: its tests run a live stack that must keep up with 40 Hz scans (a simulator or
+# lcm-logplayer at real time); ctest runs no two such tests at once (resource lock
+# `real_time_stack`), since two of them side by side under the sanitizers starve each
+# other's processes on a 2-core machine and their scans go late for no fault of the code.
 function(slamer_test name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "REAL_TIME" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main slamer_warnings)
@@ -33,7 +37,11 @@ function(slamer_test name)
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 120)
   endif()
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+  set(lock)
+  if(ARG_REAL_TIME)
+    set(lock RESOURCE_LOCK real_time_stack)
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT} ${lock})
 endfunction()
 
 # slamer_fuzzer(NAME SOURCE [DEPS ...]): a libFuzzer target, only with -DSLAMER_FUZZ=ON.
