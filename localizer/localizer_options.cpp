@@ -129,9 +129,18 @@ void read_options(const ConfigReader& reader, StatusOptions* o) {
   }
 }
 
+void read_options(const ConfigReader& reader, LocalMatchOptions* o) {
+  reader.read("below", &o->below, probability());
+  reader.read("gain", &o->gain, probability());
+  reader.read("fraction", &o->fraction, probability());
+  reader.read("shift", &o->shift, in_range(0.0, 5.0));
+  reader.read("turn", &o->turn, in_range(0.0, 3.2));
+}
+
 void read_options(const ConfigReader& reader, RecoveryOptions* o) {
   reader.read("candidates", &o->candidates, in_range(0, 1'000'000));
   reader.read("fraction", &o->fraction, probability());
+  read_options(reader.section("local"), &o->local);
 }
 
 void read_options(const ConfigReader& reader, ResumeOptions* o) {

@@ -118,10 +118,27 @@ struct StatusOptions {
   bool operator==(const StatusOptions&) const = default;
 };
 
-// Relocalization while LOST or globally localizing.
+// Local scan matching (local_match.hpp) while tracking: when the scan fits
+// the predicted pose worse than `below`, the pose within the window that
+// explains the scan best is searched, and if it fits at least `gain` better
+// than the best pose near the prediction and than the best other place in the
+// window, `fraction` of the particles (the least likely) are put around it.
+// The odometry's failures (a lost sign, a turn measured short) are then
+// corrected from the scan before the cloud has left the right place.
+struct LocalMatchOptions {
+  double below = 0.75;    // scan fit at the prediction under this: search (0: never)
+  double gain = 0.1;      // the match's fit must be this much higher to be used
+  double fraction = 0.1;  // of the particles replaced around the match
+  double shift = 0.5;     // [m] window in x and y
+  double turn = 0.5;      // [rad] window in heading
+  bool operator==(const LocalMatchOptions&) const = default;
+};
+
+// Relocalization while LOST or globally localizing, and local scan matching while tracking.
 struct RecoveryOptions {
   int candidates = 2000;  // poses scored against each scan
   double fraction = 0.1;  // of the particles replaced by the best of them each scan
+  LocalMatchOptions local;
   bool operator==(const RecoveryOptions&) const = default;
 };
 

@@ -333,6 +333,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   if (lost_ || global_ || searching_) {
     inject(beams.points, &result);
   }
+  match_locally(beams.points, turn_during_sweep(scan), &result);
   std::vector<double> log_likelihood(particles_.size());
   std::vector<double> beam_part(particles_.size());
   for (std::size_t i = 0; i < particles_.size(); ++i) {
@@ -397,8 +398,8 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   result.estimate.status = status(result.estimate);
   result.noise_gain = noise_gain_;
   // Learn the odometry's heading error only from scans the filter is sure of.
-  if (increment_ && last_heading_ && result.injected == 0 && result.estimate.status == LocalizerStatus::kOk &&
-      result.fit >= options_.status.fit_uncertain) {
+  if (increment_ && last_heading_ && result.injected == 0 && result.matched == 0 &&
+      result.estimate.status == LocalizerStatus::kOk && result.fit >= options_.status.fit_uncertain) {
     correction_.observe(*increment_, angle_diff(result.estimate.pose.theta, *last_heading_));
   }
   increment_.reset();

@@ -14,6 +14,8 @@
 // grows as the last scan fits worse (up to noise_gain_max) and has a floor;
 // the odometry's systematic heading error is learned while the filter is
 // sure and taken out of the increments (odometry_correction.hpp);
+// while the prediction fits the scan poorly, a local scan match
+// (local_match.hpp) puts some particles where the scan fits best nearby;
 // while LOST, or after request for global localization, each scan proposes
 // poses from the whole map (global_proposals.hpp) that replace the least
 // likely particles, so the filter relocalizes by itself; it says OK again only
@@ -31,6 +33,7 @@
 #include "common/semantic/objects.hpp"
 #include "common/sensors/laser_scan.hpp"
 #include "localizer/global_proposals.hpp"
+#include "localizer/local_match.hpp"
 #include "localizer/localizer_options.hpp"
 #include "localizer/odometry_correction.hpp"
 
@@ -58,6 +61,7 @@ struct UpdateResult {
   double noise_gain = 1.0;           // motion noise multiplier the next prediction uses
   double heading_per_metre = 0.0;    // [rad/m] learned odometry heading error (OdometryCorrection)
   int injected = 0;                  // particles replaced by global proposals before weighting
+  int matched = 0;                   // particles replaced around a local scan match before weighting
   bool resampled = false;
 };
 
@@ -113,6 +117,13 @@ class ParticleFilter {
                                 std::vector<std::vector<double>>* class_terms) const;
   void resample();
   void inject(const ScanPoints& points, UpdateResult* result);
+  // `sweep_turn`: how far the robot turned while the scan was taken [rad].
+  void match_locally(const ScanPoints& points, double sweep_turn, UpdateResult* result);
+  // From the odometry since the last scan and the scan's beam timing; 0 when either is unknown.
+  double turn_during_sweep(const LaserScan& scan) const;
+  // Puts `poses` in place of the least likely particles, with the weight of the
+  // most likely one: the scan's full measurement model then decides.
+  void replace_least_likely(const std::vector<Pose2>& poses);
   void update_fit(double fit, const PoseEstimate& e, int64_t utime);
   LocalizerStatus status(const PoseEstimate& e) const;
 

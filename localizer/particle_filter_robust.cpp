@@ -12,6 +12,16 @@ namespace slamer {
 namespace {
 constexpr double kFitSmoothing = 0.1;  // per scan: about 10 scans (0.25 s at 40 Hz)
 constexpr int kProposalBeams = 48;     // beams a global proposal is scored with
+// Local scan match: the coarse grid (about half the LFM's sigma_hit, and 0.25 m
+// at 10 m range), the beams it scores with and those its fits are counted over.
+constexpr double kMatchShiftStep = 0.1;   // [m]
+constexpr double kMatchTurnStep = 0.025;  // [rad]
+constexpr int kMatchBeams = 90;
+constexpr std::size_t kMatchFitBeams = 180;
+// What the cloud covers while tracking: about 3 sigma of the motion noise at
+// its largest gain over one scan at walking speed.
+constexpr double kNearShift = 0.15;  // [m]
+constexpr double kNearTurn = 0.075;  // [rad]
 }  // namespace
 
 void ParticleFilter::initialize_global() {
@@ -105,8 +115,70 @@ void ParticleFilter::inject(const ScanPoints& points, UpdateResult* result) {
   }
   const std::vector<Pose2> poses =
       proposals_->propose(field_, points, mount_, options_.recovery.candidates, keep, kProposalBeams, rng_);
-  // They replace the least likely particles, with the weight of the most
-  // likely one: this scan's full measurement model decides between them.
+  replace_least_likely(poses);
+  result->injected = static_cast<int>(poses.size());
+}
+
+double ParticleFilter::turn_during_sweep(const LaserScan& scan) const {
+  if (!increment_ || !last_fit_utime_ || scan.utime <= *last_fit_utime_ || scan.ranges.size() < 2) {
+    return 0.0;
+  }
+  const double turn_rate =
+      std::abs(increment_->rot1 + increment_->rot2) / (static_cast<double>(scan.utime - *last_fit_utime_) * 1e-6);
+  return turn_rate * scan.beam_time(scan.ranges.size() - 1);
+}
+
+void ParticleFilter::match_locally(const ScanPoints& points, double sweep_turn, UpdateResult* result) {
+  const LocalMatchOptions& o = options_.recovery.local;
+  const int count = static_cast<int>(o.fraction * static_cast<double>(particles_.size()));
+  // Only while tracking: the last scans fitted, so the cloud was right and
+  // what this scan disagrees with is the odometry since. A cloud already
+  // wrong (kidnapped, lost, searching) is the global proposals' work: near a
+  // wrong pose, the best local fit is a wrong place too.
+  const bool tracking = updated_ && !global_ && !lost_ && !searching_ && confirm_scans_seen_ < 0 &&
+                        fit_smoothed_ >= options_.status.fit_uncertain;
+  // A scan taken while turning fast is bent (each beam from where the sensor
+  // was then): bent by more than the search's heading step, its best match
+  // is a compromise that fits the bend, not the robot's pose.
+  if (o.below <= 0.0 || count < 1 || !tracking || points.x.empty() || sweep_turn > kMatchTurnStep) {
+    return;
+  }
+  const std::size_t step = std::max<std::size_t>(1, points.x.size() / kMatchFitBeams);
+  const Pose2 predicted = estimate().pose;
+  const auto fit_at = [&](const Pose2& pose) {
+    return scan_fit(*obstacles_, points, sensor_in_cells(geometry_, pose, mount_), options_.status.fit_distance, step);
+  };
+  const double fit_before = fit_at(predicted);
+  if (fit_before >= o.below) {
+    return;  // the odometry explained this scan: nothing to correct
+  }
+  // Only a match clearly better than anything else the scan fits says the
+  // odometry failed: than the best pose the cloud itself reaches (about its
+  // spread while tracking), and than the best other place in the window.
+  // Where two fit about as well (a corridor, a scan an unmapped object covers
+  // in part) the scan cannot tell them apart and the odometry is the judge.
+  const LocalMatch near = slamer::match_locally(
+      field_, points, mount_, predicted, {kNearShift, kNearTurn, kMatchShiftStep / 2.0, kMatchTurnStep, kMatchBeams});
+  const LocalMatch match = slamer::match_locally(field_, points, mount_, predicted,
+                                                 {o.shift, o.turn, kMatchShiftStep, kMatchTurnStep, kMatchBeams});
+  const double fit_after = fit_at(match.pose);
+  const double fit_other = std::max({fit_before, fit_at(near.pose), fit_at(match.runner_up)});
+  if (fit_after < fit_other + o.gain || fit_after < options_.status.fit_confirm) {
+    return;  // and it must fit as well as a correct pose does
+  }
+  // Around the match, within the grid's step, so the full model can refine it.
+  std::normal_distribution<double> shift(0.0, kMatchShiftStep / 2.0);
+  std::normal_distribution<double> turn(0.0, kMatchTurnStep / 2.0);
+  std::vector<Pose2> poses;
+  for (int k = 0; k < count; ++k) {
+    poses.push_back(
+        {match.pose.x + shift(rng_), match.pose.y + shift(rng_), wrap_angle(match.pose.theta + turn(rng_))});
+  }
+  replace_least_likely(poses);
+  result->matched = count;
+}
+
+void ParticleFilter::replace_least_likely(const std::vector<Pose2>& poses) {
   std::vector<std::size_t> order(particles_.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(poses.size()), order.end(),
@@ -117,7 +189,6 @@ void ParticleFilter::inject(const ScanPoints& points, UpdateResult* result) {
   for (std::size_t k = 0; k < poses.size(); ++k) {
     particles_[order[k]] = {poses[k], best};
   }
-  result->injected = static_cast<int>(poses.size());
 }
 
 }  // namespace slamer

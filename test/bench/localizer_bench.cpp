@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "localizer/local_match.hpp"
 #include "localizer/particle_filter.hpp"
 #include "localizer/scan_fit.hpp"
 #include "recognizer/line_recognizer.hpp"
@@ -37,6 +38,18 @@ struct Fixture {
     }
     return s;
   }
+
+  // A scan's end points in the sensor frame, in cells (ScanPoints).
+  ScanPoints points(const LaserScan& scan) const {
+    ScanPoints p;
+    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+      if (scan.ranges[i] < scan.range_max) {
+        p.x.push_back(static_cast<float>(scan.ranges[i] * std::cos(scan.angle(i)) / map.geometry.resolution));
+        p.y.push_back(static_cast<float>(scan.ranges[i] * std::sin(scan.angle(i)) / map.geometry.resolution));
+      }
+    }
+    return p;
+  }
 };
 
 const Fixture& fixture() {
@@ -51,6 +64,7 @@ void run(benchmark::State& state, int particles, int beams, LocalizerMode mode, 
     options.motion.noise_gain_max = 1.0;
     options.motion.odometry_correction_memory = 0.0;
     options.recovery.candidates = 0;
+    options.recovery.local.below = 0.0;
   }
   options.mode = mode;
   options.particles = particles;
@@ -83,8 +97,8 @@ void BM_LfmParticles(benchmark::State& state) {
 }
 BENCHMARK(BM_LfmParticles)->Arg(500)->Unit(benchmark::kMillisecond);
 
-// Issue 9: what the robustness steps cost. Off = fixed noise, no correction, no recovery
-// (the scan fit for the status is always computed).
+// Issue 9: what the robustness steps cost. Off = fixed noise, no correction, no recovery,
+// no local scan match (the scan fit for the status is always computed).
 void BM_LfmRobustOff(benchmark::State& state) {
   run(state, static_cast<int>(state.range(0)), 1081, LocalizerMode::kLfm, false);
 }
@@ -96,19 +110,30 @@ void BM_ScanFit(benchmark::State& state) {
   const DistanceField obstacles = obstacle_distance_field(f.map, 1.2);
   const Pose2 pose{20.0, 8.25, 0.0};
   const LaserScan scan = f.scan(1081, pose);
-  ScanPoints points;
-  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-    if (scan.ranges[i] < scan.range_max) {
-      points.x.push_back(static_cast<float>(scan.ranges[i] * std::cos(scan.angle(i)) / f.map.geometry.resolution));
-      points.y.push_back(static_cast<float>(scan.ranges[i] * std::sin(scan.angle(i)) / f.map.geometry.resolution));
-    }
-  }
+  const ScanPoints points = f.points(scan);
   const Pose2 sensor = sensor_in_cells(f.map.geometry, pose, f.robot.lidar.mount);
   for (auto _ : state) {
     benchmark::DoNotOptimize(scan_fit(obstacles, points, sensor, 0.1));
   }
 }
 BENCHMARK(BM_ScanFit)->Unit(benchmark::kMicrosecond);
+
+// One local scan match (what a scan costs on top when the prediction fits it
+// poorly): the shipped window, 0.5 m and 0.5 rad, from a prediction 0.3 m and
+// 0.2 rad off, every beam's end point given.
+void BM_LocalMatch(benchmark::State& state) {
+  const Fixture& f = fixture();
+  const LocalizerOptions options;
+  const LikelihoodField field(std::make_shared<const DistanceField>(obstacle_distance_field(f.map, 1.2)), options.lfm);
+  const Pose2 pose{20.0, 8.25, 0.0};
+  const LaserScan scan = f.scan(1081, pose);
+  const ScanPoints points = f.points(scan);
+  const LocalMatchWindow window{options.recovery.local.shift, options.recovery.local.turn};
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(match_locally(field, points, f.robot.lidar.mount, {20.3, 8.25, 0.2}, window));
+  }
+}
+BENCHMARK(BM_LocalMatch)->Unit(benchmark::kMillisecond);
 
 // One scan of a lost (or globally localizing) SLAMER filter, 500 particles x 1081 beams:
 // 2000 global proposals scored and 50 injected before the usual update.

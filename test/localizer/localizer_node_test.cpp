@@ -326,9 +326,11 @@ TEST(LocalizerNode, WithoutOdometryTheParticlesFollowTheScans) {
   ASSERT_TRUE(back.has_value());
   EXPECT_FALSE(node.health().odometry_missing);
   EXPECT_NEAR(back->estimate.pose.x, 2.8, 0.1);
-  // The diffusion is what follows: with no_odometry_speed 0 the estimate is left behind.
+  // The diffusion is what follows: with no_odometry_speed 0 the estimate is left behind
+  // (and without the local scan match, which would follow the scans too).
   options.motion.no_odometry_speed = 0.0;
   options.motion.no_odometry_turn_rate = 0.0;
+  options.recovery.local.below = 0.0;
   LocalizerNode still(w.map, options, w.robot.lidar.mount);
   const std::optional<UpdateResult> behind = drive_without_odometry(w, &still);
   ASSERT_TRUE(behind.has_value());

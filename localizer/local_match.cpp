@@ -1,0 +1,161 @@
+#include "localizer/local_match.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+namespace slamer {
+
+namespace {
+
+// The thinned end points, rotated by one heading: one rotation per heading,
+// then a translation and a table lookup per point and pose.
+struct Rotated {
+  std::vector<float> x, y;
+};
+
+Rotated rotate(const ScanPoints& points, std::size_t step, double theta) {
+  const float c = static_cast<float>(std::cos(theta));
+  const float s = static_cast<float>(std::sin(theta));
+  Rotated r;
+  for (std::size_t i = 0; i < points.x.size(); i += step) {
+    r.x.push_back(c * points.x[i] - s * points.y[i]);
+    r.y.push_back(s * points.x[i] + c * points.y[i]);
+  }
+  return r;
+}
+
+double score(const LikelihoodField& field, const Rotated& r, double tx, double ty) {
+  const GridGeometry& g = field.geometry();
+  const float width = static_cast<float>(g.width);
+  const float height = static_cast<float>(g.height);
+  const float fx = static_cast<float>(tx);
+  const float fy = static_cast<float>(ty);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < r.x.size(); ++i) {
+    const float gx = r.x[i] + fx;
+    const float gy = r.y[i] + fy;
+    sum += gx >= 0.0f && gy >= 0.0f && gx < width && gy < height
+               ? field.log_likelihood(static_cast<int>(gx), static_cast<int>(gy))
+               : field.off_map_log_likelihood();
+  }
+  return sum;
+}
+
+}  // namespace
+
+namespace {
+
+struct Scored {
+  Pose2 sensor;  // cells, rad
+  double score;
+};
+
+// Coordinate ascent from `from` below the grid's resolution, steps halving
+// three times, never leaving the window around `start`.
+Scored refine(const LikelihoodField& field, const ScanPoints& points, std::size_t step, const Pose2& start,
+              double shift_cells, double turn, double step_cells, double turn_step, Scored from) {
+  double dxy = step_cells / 2.0;
+  double dtheta = turn_step / 2.0;
+  for (int level = 0; level < 3; ++level, dxy /= 2.0, dtheta /= 2.0) {
+    for (int moves = 0; moves < 8; ++moves) {
+      const Pose2& b = from.sensor;
+      const Pose2 tries[6] = {{b.x + dxy, b.y, b.theta}, {b.x - dxy, b.y, b.theta},    {b.x, b.y + dxy, b.theta},
+                              {b.x, b.y - dxy, b.theta}, {b.x, b.y, b.theta + dtheta}, {b.x, b.y, b.theta - dtheta}};
+      const Scored before = from;
+      for (const Pose2& t : tries) {
+        if (std::abs(t.x - start.x) > shift_cells || std::abs(t.y - start.y) > shift_cells ||
+            std::abs(t.theta - start.theta) > turn) {
+          continue;  // the window bounds the refinement too
+        }
+        const double s = score(field, rotate(points, step, t.theta), t.x, t.y);
+        if (s > from.score) {
+          from = {t, s};
+        }
+      }
+      if (from.score == before.score) {
+        break;
+      }
+    }
+  }
+  return from;
+}
+
+}  // namespace
+
+LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points, const Pose2& mount,
+                         const Pose2& predicted, const LocalMatchWindow& window) {
+  if (points.x.empty()) {
+    return {predicted, 0.0, predicted};
+  }
+  const GridGeometry& g = field.geometry();
+  const std::size_t step =
+      std::max<std::size_t>(1, points.x.size() / static_cast<std::size_t>(std::max(window.beams, 1)));
+  const Pose2 start = sensor_in_cells(g, predicted, mount);  // cells, rad
+  const double shift_cells = window.shift / g.resolution;
+  const double step_cells = std::max(window.shift_step / g.resolution, 1e-3);
+  const double turn_step = std::max(window.turn_step, 1e-4);
+  const int shifts = static_cast<int>(std::floor(shift_cells / step_cells + 1e-9));
+  const int turns = static_cast<int>(std::floor(window.turn / turn_step + 1e-9));
+
+  // Every pose of the grid, indexed (heading, row, column).
+  const int side = 2 * shifts + 1;
+  const auto index = [&](int k, int iy, int ix) { return ((k + turns) * side + (iy + shifts)) * side + ix + shifts; };
+  std::vector<Scored> grid(static_cast<std::size_t>((2 * turns + 1) * side * side));
+  for (int k = -turns; k <= turns; ++k) {
+    const double theta = start.theta + k * turn_step;
+    const Rotated r = rotate(points, step, theta);
+    for (int iy = -shifts; iy <= shifts; ++iy) {
+      for (int ix = -shifts; ix <= shifts; ++ix) {
+        const double x = start.x + ix * step_cells;
+        const double y = start.y + iy * step_cells;
+        grid[static_cast<std::size_t>(index(k, iy, ix))] = {{x, y, theta}, score(field, r, x, y)};
+      }
+    }
+  }
+  // The best pose (the prediction, the grid's centre, wins ties), and the best
+  // local maximum of the grid apart from it: another place the scan fits, not
+  // the best one's shoulder.
+  const auto at = [&](int k, int iy, int ix) -> const Scored& {
+    return grid[static_cast<std::size_t>(index(k, iy, ix))];
+  };
+  Scored best = at(0, 0, 0);
+  for (const Scored& c : grid) {
+    best = c.score > best.score ? c : best;
+  }
+  const auto peak = [&](int k, int iy, int ix) {
+    const double s = at(k, iy, ix).score;
+    return (k == -turns || at(k - 1, iy, ix).score <= s) && (k == turns || at(k + 1, iy, ix).score <= s) &&
+           (iy == -shifts || at(k, iy - 1, ix).score <= s) && (iy == shifts || at(k, iy + 1, ix).score <= s) &&
+           (ix == -shifts || at(k, iy, ix - 1).score <= s) && (ix == shifts || at(k, iy, ix + 1).score <= s);
+  };
+  const double apart_cells = window.separation / g.resolution;
+  std::optional<Scored> other;
+  for (int k = -turns; k <= turns; ++k) {
+    for (int iy = -shifts; iy <= shifts; ++iy) {
+      for (int ix = -shifts; ix <= shifts; ++ix) {
+        const Scored& c = at(k, iy, ix);
+        const bool apart = std::hypot(c.sensor.x - best.sensor.x, c.sensor.y - best.sensor.y) > apart_cells ||
+                           std::abs(c.sensor.theta - best.sensor.theta) > window.separation_turn;
+        if (apart && (!other || c.score > other->score) && peak(k, iy, ix)) {
+          other = c;
+        }
+      }
+    }
+  }
+
+  const auto refined = [&](const Scored& from) {
+    return refine(field, points, step, start, shift_cells, window.turn, step_cells, turn_step, from);
+  };
+  // Back from the sensor in cells to the base in the map frame.
+  const auto base = [&](const Pose2& sensor) {
+    return compose(compose(g.origin, {sensor.x * g.resolution, sensor.y * g.resolution, wrap_angle(sensor.theta)}),
+                   inverse(mount));
+  };
+  const Scored matched = refined(best);
+  const std::size_t used = (points.x.size() + step - 1) / step;
+  return {base(matched.sensor), matched.score / static_cast<double>(used), base(refined(other.value_or(best)).sensor)};
+}
+
+}  // namespace slamer

@@ -1,0 +1,138 @@
+// Local scan matching (localizer/local_match.hpp): from a prediction off by
+// what a failing odometry gives, the search finds the pose the scan was taken
+// at; beyond its window it does not reach; with nothing to match it keeps the
+// prediction.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/config/config_reader.hpp"
+#include "localizer/local_match.hpp"
+#include "localizer/localizer_options.hpp"
+#include "test/localizer/small_world.hpp"
+
+namespace slamer {
+namespace {
+
+ScanPoints points_of(const LaserScan& scan, double resolution) {
+  ScanPoints points;
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    if (scan.ranges[i] < scan.range_max) {
+      const double r = scan.ranges[i] / resolution;
+      points.x.push_back(static_cast<float>(r * std::cos(scan.angle(i))));
+      points.y.push_back(static_cast<float>(r * std::sin(scan.angle(i))));
+    }
+  }
+  return points;
+}
+
+class LocalMatchTest : public ::testing::Test {
+ protected:
+  SmallWorld w;
+  LikelihoodField field{std::make_shared<const DistanceField>(obstacle_distance_field(w.map, 1.2)), {}};
+};
+
+TEST_F(LocalMatchTest, FindsThePoseFromAPredictionOffByAFailingOdometrysError) {
+  const Pose2 truth{2.0, 3.0, 0.3};
+  const ScanPoints points = points_of(w.scan_at(truth), w.map.geometry.resolution);
+  // A sign of translation lost over 0.3 m, a turn measured 15 deg short, both.
+  for (const Pose2& off : {Pose2{0.3, 0.0, 0.0}, Pose2{0.0, 0.0, -0.26}, Pose2{-0.25, 0.2, 0.35}}) {
+    const Pose2 predicted = compose(truth, off);
+    const LocalMatch m = match_locally(field, points, w.robot.lidar.mount, predicted, {});
+    EXPECT_NEAR(m.pose.x, truth.x, 0.05) << off.x << " " << off.y << " " << off.theta;
+    EXPECT_NEAR(m.pose.y, truth.y, 0.05) << off.x << " " << off.y << " " << off.theta;
+    EXPECT_NEAR(angle_diff(m.pose.theta, truth.theta), 0.0, 0.01) << off.x << " " << off.y << " " << off.theta;
+    // Within a cell of the truth (the field's sigma_hit is 0.2 m), and it scores better than the prediction.
+    const LocalMatch at_prediction = match_locally(field, points, w.robot.lidar.mount, predicted,
+                                                   {.shift = 0.0, .turn = 0.0, .shift_step = 0.1, .turn_step = 0.025});
+    EXPECT_GT(m.mean_log_likelihood, at_prediction.mean_log_likelihood + 0.1);
+  }
+}
+
+// A corridor with posts every 0.4 m along both walls: a scan there fits every
+// 0.4 m. The runner-up is the next such place, not the best one's shoulder,
+// and it fits about as well (what makes the filter leave such a match alone).
+TEST(LocalMatch, TheRunnerUpIsAnotherPlaceTheScanFitsNotTheBestOnesShoulder) {
+  SemanticMap map;
+  map.geometry.width = 240;  // 12 m x 3 m at 5 cm
+  map.geometry.height = 60;
+  map.geometry.resolution = 0.05;
+  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
+  map.labels.assign(map.geometry.size(), -1);
+  const auto wall = [&](int x, int y) { return y == 0 || y == 59 || ((y == 1 || y == 58) && x % 8 < 2); };
+  for (int y = 0; y < 60; ++y) {
+    for (int x = 0; x < 240; ++x) {
+      map.occupancy[map.geometry.index(x, y)] = wall(x, y) ? Occupancy::kOccupied : Occupancy::kFree;
+    }
+  }
+  const LikelihoodField corridor(std::make_shared<const DistanceField>(obstacle_distance_field(map, 1.2)), {});
+  // The walls' cells within 4 m, seen from the sensor at (6.0, 1.5), heading 0.
+  const Pose2 truth{6.0, 1.5, 0.0};
+  ScanPoints points;
+  for (int y = 0; y < 60; ++y) {
+    for (int x = 0; x < 240; ++x) {
+      const double dx = (x + 0.5) * 0.05 - truth.x;
+      const double dy = (y + 0.5) * 0.05 - truth.y;
+      if (wall(x, y) && std::hypot(dx, dy) < 4.0) {
+        points.x.push_back(static_cast<float>(dx / 0.05));
+        points.y.push_back(static_cast<float>(dy / 0.05));
+      }
+    }
+  }
+  const LocalMatch m = match_locally(corridor, points, {}, {6.05, 1.5, 0.0}, {.beams = 400});
+  EXPECT_NEAR(m.pose.x, truth.x, 0.05);
+  EXPECT_NEAR(m.pose.y, truth.y, 0.05);
+  EXPECT_NEAR(std::abs(m.runner_up.x - m.pose.x), 0.4, 0.06) << m.runner_up.x;
+  EXPECT_NEAR(m.runner_up.y, truth.y, 0.05);
+  EXPECT_NEAR(m.runner_up.theta, 0.0, 0.03);
+  const LocalMatchWindow here{.shift = 0.0, .turn = 0.0, .beams = 400};
+  const double other = match_locally(corridor, points, {}, m.runner_up, here).mean_log_likelihood;
+  EXPECT_LE(other, m.mean_log_likelihood);
+  EXPECT_GT(other, m.mean_log_likelihood - 0.1);
+}
+
+TEST_F(LocalMatchTest, StaysWithinItsWindow) {
+  const Pose2 truth{2.0, 3.0, 0.0};
+  const ScanPoints points = points_of(w.scan_at(truth), w.map.geometry.resolution);
+  const Pose2 predicted{3.2, 3.0, 0.0};  // 1.2 m off: beyond a 0.5 m window
+  const LocalMatch m = match_locally(field, points, w.robot.lidar.mount, predicted, {.shift = 0.5, .turn = 0.2});
+  // The sensor's pose stays within the window; the base's within the window plus what
+  // turning by up to 0.2 rad moves the base about a sensor mounted 0.15 m ahead of it.
+  const double slack = 0.15 * 0.2 + 1e-6;
+  EXPECT_LE(std::abs(m.pose.x - predicted.x), 0.5 + slack);
+  EXPECT_LE(std::abs(m.pose.y - predicted.y), 0.5 + slack);
+  EXPECT_LE(std::abs(angle_diff(m.pose.theta, predicted.theta)), 0.2 + 1e-6);
+  EXPECT_GT(std::abs(m.pose.x - truth.x), 0.3);
+}
+
+TEST_F(LocalMatchTest, WithoutPointsKeepsThePrediction) {
+  const Pose2 predicted{2.0, 3.0, 0.5};
+  const LocalMatch m = match_locally(field, {}, w.robot.lidar.mount, predicted, {});
+  EXPECT_EQ(m.pose.x, predicted.x);
+  EXPECT_EQ(m.pose.y, predicted.y);
+  EXPECT_EQ(m.pose.theta, predicted.theta);
+  EXPECT_EQ(m.mean_log_likelihood, 0.0);
+}
+
+TEST(LocalMatchOptions, AreReadAndBadValuesRefusedWithTheirKey) {
+  const auto error_of = [](const std::string& yaml) -> std::string {
+    try {
+      parse_options<LocalizerOptions>(yaml, "localizer.yaml");
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const auto o = parse_options<LocalizerOptions>("recovery: {local: {below: 0, shift: 1.0, turn: 0.3}}\n", "l.yaml");
+  EXPECT_EQ(o.recovery.local.below, 0.0);  // off
+  EXPECT_EQ(o.recovery.local.shift, 1.0);
+  EXPECT_EQ(o.recovery.local.turn, 0.3);
+  EXPECT_EQ(o.recovery.local.fraction, LocalMatchOptions{}.fraction);
+  EXPECT_NE(error_of("recovery: {local: {fraction: 1.5}}\n").find("'recovery.local.fraction'"), std::string::npos);
+  EXPECT_NE(error_of("recovery: {local: {turn: -0.1}}\n").find("'recovery.local.turn'"), std::string::npos);
+  EXPECT_NE(error_of("recovery: {local: {window: 1}}\n").find("recovery.local.window"), std::string::npos)
+      << error_of("recovery: {local: {window: 1}}\n");
+}
+
+}  // namespace
+}  // namespace slamer
