@@ -71,7 +71,7 @@ class LocalizerNode {
   // Global localization on demand (an INITIAL_POSE whose cov[0] is negative):
   // particles uniform over the map's free space, relocalized from the scans.
   void request_global_localization();
-  // `arrival_utime`: when the scan reached the process, in the clock `now` of
+  // `arrival_utime`: when the process took the scan in, in the clock `now` of
   // poll() is given in. A scan waits for its objects measured from its
   // arrival, so a log played live (old utimes, new arrival times) waits as it did.
   void on_scan(const LaserScan& scan, int64_t arrival_utime);

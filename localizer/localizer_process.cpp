@@ -50,7 +50,7 @@ LocalizerProcess::LocalizerProcess(Bus& bus, const LocalizerProcessConfig& confi
     bus_.log_info("global localization from the start: particles over the map's free space");
   }
   bus_.subscribe<odometry_t>(ch.odometry, [this](const odometry_t& m, const ReceiveInfo&) { on_odometry(m); });
-  bus_.subscribe<laser_scan_t>(ch.lidar, [this](const laser_scan_t& m, const ReceiveInfo& info) { on_scan(m, info); });
+  bus_.subscribe<laser_scan_t>(ch.lidar, [this](const laser_scan_t& m, const ReceiveInfo&) { on_scan(m); });
   bus_.subscribe<line_objects_t>(ch.line_objects, [this](const line_objects_t& m, const ReceiveInfo&) {
     node_.on_objects(from_message(m));
     publish_ready();
@@ -116,7 +116,7 @@ void LocalizerProcess::refuse(const std::string& channel, const std::string& rea
   refused_.count(channel, reason);
 }
 
-void LocalizerProcess::on_scan(const laser_scan_t& message, const ReceiveInfo& info) {
+void LocalizerProcess::on_scan(const laser_scan_t& message) {
   const LaserScan scan = from_message(message);
   if (const std::string problem = scan_problem(scan, limits_); !problem.empty()) {
     refuse(config_.channels.lidar, problem);
@@ -133,7 +133,7 @@ void LocalizerProcess::on_scan(const laser_scan_t& message, const ReceiveInfo& i
       if (scan_time_.agreeing() == 1) {
         refuse_held();  // the ones before did not agree with this one
       }
-      held_scans_.emplace_back(scan, info.receive_utime);
+      held_scans_.emplace_back(scan, bus_.now());
       return;
     case TimeVerdict::kMoved:
       bus_.log_warning(config_.channels.lidar + "'s time moved to " + std::to_string(scan.utime) +
@@ -151,7 +151,11 @@ void LocalizerProcess::on_scan(const laser_scan_t& message, const ReceiveInfo& i
     // Scans stand alone: nothing to start over; said, as a gap in the input.
     bus_.note_event(process_status_t::DEGRADED, config_.channels.lidar + "'s driver restarted (" + restart + ")");
   }
-  node_.on_scan(scan, info.receive_utime);
+  // The wait for its objects counts from now, when this process takes the scan
+  // off its queue, not from when it reached the host: a localizer that fell
+  // behind (a slow build, a busy CPU) would otherwise find every scan's wait
+  // over as it reads it, with the objects next in its queue.
+  node_.on_scan(scan, bus_.now());
   publish_ready();
 }
 

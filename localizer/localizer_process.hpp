@@ -42,7 +42,7 @@ class LocalizerProcess {
   int64_t scans_published() const { return scans_published_; }
 
  private:
-  void on_scan(const laser_scan_t& message, const ReceiveInfo& info);
+  void on_scan(const laser_scan_t& message);
   void on_odometry(const odometry_t& message);
   void on_initial_pose(const initial_pose_t& message);
   void refuse(const std::string& channel, const std::string& reason);
