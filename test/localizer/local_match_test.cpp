@@ -9,6 +9,7 @@
 #include "common/config/config_reader.hpp"
 #include "localizer/local_match.hpp"
 #include "localizer/localizer_options.hpp"
+#include "test/localizer/options_error.hpp"
 #include "test/localizer/small_world.hpp"
 
 namespace slamer {
@@ -115,14 +116,7 @@ TEST_F(LocalMatchTest, WithoutPointsKeepsThePrediction) {
 }
 
 TEST(LocalMatchOptions, AreReadAndBadValuesRefusedWithTheirKey) {
-  const auto error_of = [](const std::string& yaml) -> std::string {
-    try {
-      parse_options<LocalizerOptions>(yaml, "localizer.yaml");
-    } catch (const ConfigError& e) {
-      return e.what();
-    }
-    return "";
-  };
+  const auto error_of = localizer_options_error;
   const auto o = parse_options<LocalizerOptions>("recovery: {local: {below: 0, shift: 1.0, turn: 0.3}}\n", "l.yaml");
   EXPECT_EQ(o.recovery.local.below, 0.0);  // off
   EXPECT_EQ(o.recovery.local.shift, 1.0);

@@ -17,6 +17,7 @@
 #include "localizer/localizer_node.hpp"
 #include "localizer/motion_model.hpp"
 #include "localizer/scan_fit.hpp"
+#include "test/localizer/options_error.hpp"
 #include "test/localizer/small_world.hpp"
 #include "tools/sim/simulator.hpp"
 
@@ -430,14 +431,7 @@ TEST(Robustness, AResumedPoseTheScansDoNotConfirmHandsOverToGlobalLocalization) 
 }
 
 TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
-  const auto error_of = [](const std::string& yaml) -> std::string {
-    try {
-      parse_options<LocalizerOptions>(yaml, "localizer.yaml");
-    } catch (const ConfigError& e) {
-      return e.what();
-    }
-    return "";
-  };
+  const auto error_of = localizer_options_error;
   EXPECT_EQ(error_of("status: {fit_confirm: 0.75, fit_sustained: 0.65}\n"), "");
   EXPECT_NE(error_of("status: {fit_confirm: 0.95}\n").find("'status.fit_confirm'"), std::string::npos)
       << error_of("status: {fit_confirm: 0.95}\n");
