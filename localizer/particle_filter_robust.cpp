@@ -157,14 +157,16 @@ void ParticleFilter::match_locally(const ScanPoints& points, double sweep_turn, 
   // spread while tracking), and than the best other place in the window.
   // Where two fit about as well (a corridor, a scan an unmapped object covers
   // in part) the scan cannot tell them apart and the odometry is the judge.
-  const LocalMatch near = slamer::match_locally(
-      field_, points, mount_, predicted, {kNearShift, kNearTurn, kMatchShiftStep / 2.0, kMatchTurnStep, kMatchBeams});
   const LocalMatch match = slamer::match_locally(field_, points, mount_, predicted,
                                                  {o.shift, o.turn, kMatchShiftStep, kMatchTurnStep, kMatchBeams});
   const double fit_after = fit_at(match.pose);
-  const double fit_other = std::max({fit_before, fit_at(near.pose), fit_at(match.runner_up)});
-  if (fit_after < fit_other + o.gain || fit_after < options_.status.fit_confirm) {
+  if (fit_after < fit_before + o.gain || fit_after < options_.status.fit_confirm) {
     return;  // and it must fit as well as a correct pose does
+  }
+  const LocalMatch near = slamer::match_locally(
+      field_, points, mount_, predicted, {kNearShift, kNearTurn, kMatchShiftStep / 2.0, kMatchTurnStep, kMatchBeams});
+  if (fit_after < std::max(fit_at(near.pose), fit_at(match.runner_up)) + o.gain) {
+    return;
   }
   // Around the match, within the grid's step, so the full model can refine it.
   std::normal_distribution<double> shift(0.0, kMatchShiftStep / 2.0);
