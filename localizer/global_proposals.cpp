@@ -56,26 +56,11 @@ std::vector<Pose2> GlobalProposals::propose(const LikelihoodField& field, const 
     return {};
   }
   const std::size_t step = std::max<std::size_t>(1, points.x.size() / static_cast<std::size_t>(std::max(beams, 1)));
-  const float width = static_cast<float>(geometry_.width);
-  const float height = static_cast<float>(geometry_.height);
   std::vector<std::pair<double, Pose2>> scored;
   scored.reserve(static_cast<std::size_t>(candidates));
   for (int k = 0; k < candidates; ++k) {
     const Pose2 pose = uniform(rng);
-    const Pose2 sensor = sensor_in_cells(geometry_, pose, mount);
-    const float c = static_cast<float>(std::cos(sensor.theta));
-    const float s = static_cast<float>(std::sin(sensor.theta));
-    const float tx = static_cast<float>(sensor.x);
-    const float ty = static_cast<float>(sensor.y);
-    double score = 0.0;
-    for (std::size_t i = 0; i < points.x.size(); i += step) {
-      const float gx = c * points.x[i] - s * points.y[i] + tx;
-      const float gy = s * points.x[i] + c * points.y[i] + ty;
-      score += gx >= 0.0f && gy >= 0.0f && gx < width && gy < height
-                   ? field.log_likelihood(static_cast<int>(gx), static_cast<int>(gy))
-                   : field.off_map_log_likelihood();
-    }
-    scored.emplace_back(score, pose);
+    scored.emplace_back(field_log_likelihood(field, points, sensor_in_cells(geometry_, pose, mount), step), pose);
   }
   const std::size_t n = std::min(scored.size(), static_cast<std::size_t>(keep));
   std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(n), scored.end(),

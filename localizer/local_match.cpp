@@ -9,8 +9,9 @@ namespace slamer {
 
 namespace {
 
-// The thinned end points, rotated by one heading: one rotation per heading,
-// then a translation and a table lookup per point and pose.
+// The grid's fast path: the thinned end points rotated once per heading, then
+// a translation and a table lookup per point and pose (field_log_likelihood
+// rotates every point for every pose, as the refinement's few poses need).
 struct Rotated {
   std::vector<float> x, y;
 };
@@ -43,10 +44,6 @@ double score(const LikelihoodField& field, const Rotated& r, double tx, double t
   return sum;
 }
 
-}  // namespace
-
-namespace {
-
 struct Scored {
   Pose2 sensor;  // cells, rad
   double score;
@@ -69,7 +66,7 @@ Scored refine(const LikelihoodField& field, const ScanPoints& points, std::size_
             std::abs(t.theta - start.theta) > turn) {
           continue;  // the window bounds the refinement too
         }
-        const double s = score(field, rotate(points, step, t.theta), t.x, t.y);
+        const double s = field_log_likelihood(field, points, t, step);
         if (s > from.score) {
           from = {t, s};
         }

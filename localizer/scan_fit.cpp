@@ -35,4 +35,24 @@ double scan_fit(const DistanceField& obstacles, const ScanPoints& points, const 
   return used > 0 ? static_cast<double>(fitting) / static_cast<double>(used) : 0.0;
 }
 
+double field_log_likelihood(const LikelihoodField& field, const ScanPoints& points, const Pose2& sensor,
+                            std::size_t step) {
+  const GridGeometry& g = field.geometry();
+  const float c = static_cast<float>(std::cos(sensor.theta));
+  const float s = static_cast<float>(std::sin(sensor.theta));
+  const float tx = static_cast<float>(sensor.x);
+  const float ty = static_cast<float>(sensor.y);
+  const float width = static_cast<float>(g.width);
+  const float height = static_cast<float>(g.height);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < points.x.size(); i += step) {
+    const float gx = c * points.x[i] - s * points.y[i] + tx;
+    const float gy = s * points.x[i] + c * points.y[i] + ty;
+    sum += gx >= 0.0f && gy >= 0.0f && gx < width && gy < height
+               ? field.log_likelihood(static_cast<int>(gx), static_cast<int>(gy))
+               : field.off_map_log_likelihood();
+  }
+  return sum;
+}
+
 }  // namespace slamer

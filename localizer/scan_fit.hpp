@@ -10,6 +10,7 @@
 
 #include "common/geometry/se2.hpp"
 #include "common/map/distance_field.hpp"
+#include "common/map/likelihood_field.hpp"
 
 namespace slamer {
 
@@ -27,5 +28,11 @@ Pose2 sensor_in_cells(const GridGeometry& geometry, const Pose2& base, const Pos
 // points off the map do not fit.
 double scan_fit(const DistanceField& obstacles, const ScanPoints& points, const Pose2& sensor, double fit_distance,
                 std::size_t step = 1);
+
+// Sum of the likelihood field's log-likelihoods of `points` (every `step`-th)
+// for a sensor at `sensor` (sensor_in_cells), off-map points at the field's
+// off-map value: how global proposals and local matches score a pose.
+double field_log_likelihood(const LikelihoodField& field, const ScanPoints& points, const Pose2& sensor,
+                            std::size_t step);
 
 }  // namespace slamer
