@@ -15,18 +15,6 @@
 namespace slamer {
 namespace {
 
-ScanPoints points_of(const LaserScan& scan, double resolution) {
-  ScanPoints points;
-  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-    if (scan.ranges[i] < scan.range_max) {
-      const double r = scan.ranges[i] / resolution;
-      points.x.push_back(static_cast<float>(r * std::cos(scan.angle(i))));
-      points.y.push_back(static_cast<float>(r * std::sin(scan.angle(i))));
-    }
-  }
-  return points;
-}
-
 class LocalMatchTest : public ::testing::Test {
  protected:
   SmallWorld w;
@@ -35,7 +23,7 @@ class LocalMatchTest : public ::testing::Test {
 
 TEST_F(LocalMatchTest, FindsThePoseFromAPredictionOffByAFailingOdometrysError) {
   const Pose2 truth{2.0, 3.0, 0.3};
-  const ScanPoints points = points_of(w.scan_at(truth), w.map.geometry.resolution);
+  const ScanPoints points = end_points(w.scan_at(truth), w.map.geometry.resolution);
   // A sign of translation lost over 0.3 m, a turn measured 15 deg short, both.
   for (const Pose2& off : {Pose2{0.3, 0.0, 0.0}, Pose2{0.0, 0.0, -0.26}, Pose2{-0.25, 0.2, 0.35}}) {
     const Pose2 predicted = compose(truth, off);
@@ -94,7 +82,7 @@ TEST(LocalMatch, TheRunnerUpIsAnotherPlaceTheScanFitsNotTheBestOnesShoulder) {
 
 TEST_F(LocalMatchTest, StaysWithinItsWindow) {
   const Pose2 truth{2.0, 3.0, 0.0};
-  const ScanPoints points = points_of(w.scan_at(truth), w.map.geometry.resolution);
+  const ScanPoints points = end_points(w.scan_at(truth), w.map.geometry.resolution);
   const Pose2 predicted{3.2, 3.0, 0.0};  // 1.2 m off: beyond a 0.5 m window
   const LocalMatch m = match_locally(field, points, w.robot.lidar.mount, predicted, {.shift = 0.5, .turn = 0.2});
   // The sensor's pose stays within the window; the base's within the window plus what

@@ -445,14 +445,7 @@ TEST(ScanFit, FractionOfBeamsOnTheMapsObstacles) {
   const DistanceField obstacles = obstacle_distance_field(w.map, 1.0);
   const Pose2 truth{2.0, 3.0, 0.0};
   const LaserScan scan = w.scan_at(truth);
-  ScanPoints points;
-  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-    if (scan.ranges[i] < scan.range_max) {
-      const double r = scan.ranges[i] / w.map.geometry.resolution;
-      points.x.push_back(static_cast<float>(r * std::cos(scan.angle(i))));
-      points.y.push_back(static_cast<float>(r * std::sin(scan.angle(i))));
-    }
-  }
+  const ScanPoints points = end_points(scan, w.map.geometry.resolution);
   const auto fit = [&](const Pose2& pose) {
     return scan_fit(obstacles, points, sensor_in_cells(w.map.geometry, pose, w.robot.lidar.mount), 0.1);
   };

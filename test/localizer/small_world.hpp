@@ -2,6 +2,7 @@
 // simulated at a pose.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <random>
 #include <string>
@@ -9,6 +10,7 @@
 #include "common/map/semantic_map.hpp"
 #include "common/robot/robot_options.hpp"
 #include "common/sensors/laser_scan.hpp"
+#include "localizer/scan_fit.hpp"
 #include "tools/sim/world.hpp"
 
 namespace slamer {
@@ -35,5 +37,18 @@ struct SmallWorld {
     return scan;
   }
 };
+
+// A scan's returns (not max range) as end points in the sensor frame, in cells of `resolution`.
+inline ScanPoints end_points(const LaserScan& scan, double resolution) {
+  ScanPoints points;
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    if (scan.ranges[i] < scan.range_max) {
+      const double r = scan.ranges[i] / resolution;
+      points.x.push_back(static_cast<float>(r * std::cos(scan.angle(i))));
+      points.y.push_back(static_cast<float>(r * std::sin(scan.angle(i))));
+    }
+  }
+  return points;
+}
 
 }  // namespace slamer
