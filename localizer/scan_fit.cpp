@@ -9,15 +9,39 @@ Pose2 sensor_in_cells(const GridGeometry& geometry, const Pose2& base, const Pos
   return {grid.x / geometry.resolution, grid.y / geometry.resolution, grid.theta};
 }
 
+namespace {
+
+// Sensor-frame points (cells) placed on the grid from a sensor pose (cells, rad).
+class GridPlacer {
+ public:
+  GridPlacer(const GridGeometry& g, const Pose2& sensor)
+      : c_(static_cast<float>(std::cos(sensor.theta))),
+        s_(static_cast<float>(std::sin(sensor.theta))),
+        tx_(static_cast<float>(sensor.x)),
+        ty_(static_cast<float>(sensor.y)),
+        width_(static_cast<float>(g.width)),
+        height_(static_cast<float>(g.height)) {}
+  // The cell of the point (x, y), or false when it is off the grid.
+  bool cell(float x, float y, int* cx, int* cy) const {
+    const float gx = c_ * x - s_ * y + tx_;
+    const float gy = s_ * x + c_ * y + ty_;
+    if (!(gx >= 0.0f && gy >= 0.0f && gx < width_ && gy < height_)) {
+      return false;
+    }
+    *cx = static_cast<int>(gx);
+    *cy = static_cast<int>(gy);
+    return true;
+  }
+
+ private:
+  float c_, s_, tx_, ty_, width_, height_;
+};
+
+}  // namespace
+
 double scan_fit(const DistanceField& obstacles, const ScanPoints& points, const Pose2& sensor, double fit_distance,
                 std::size_t step) {
-  const GridGeometry& g = obstacles.geometry();
-  const float c = static_cast<float>(std::cos(sensor.theta));
-  const float s = static_cast<float>(std::sin(sensor.theta));
-  const float tx = static_cast<float>(sensor.x);
-  const float ty = static_cast<float>(sensor.y);
-  const float width = static_cast<float>(g.width);
-  const float height = static_cast<float>(g.height);
+  const GridPlacer place(obstacles.geometry(), sensor);
   // Levels at or below this are within fit_distance.
   const double level = std::floor(fit_distance / obstacles.step() + 1e-9);
   const int max_level = level >= DistanceField::kSaturated ? DistanceField::kSaturated - 1 : static_cast<int>(level);
@@ -25,10 +49,9 @@ double scan_fit(const DistanceField& obstacles, const ScanPoints& points, const 
   std::size_t fitting = 0;
   for (std::size_t i = 0; i < points.x.size(); i += step) {
     ++used;
-    const float gx = c * points.x[i] - s * points.y[i] + tx;
-    const float gy = s * points.x[i] + c * points.y[i] + ty;
-    if (gx >= 0.0f && gy >= 0.0f && gx < width && gy < height &&
-        obstacles.level(static_cast<int>(gx), static_cast<int>(gy)) <= max_level) {
+    int cx = 0;
+    int cy = 0;
+    if (place.cell(points.x[i], points.y[i], &cx, &cy) && obstacles.level(cx, cy) <= max_level) {
       ++fitting;
     }
   }
@@ -37,20 +60,13 @@ double scan_fit(const DistanceField& obstacles, const ScanPoints& points, const 
 
 double field_log_likelihood(const LikelihoodField& field, const ScanPoints& points, const Pose2& sensor,
                             std::size_t step) {
-  const GridGeometry& g = field.geometry();
-  const float c = static_cast<float>(std::cos(sensor.theta));
-  const float s = static_cast<float>(std::sin(sensor.theta));
-  const float tx = static_cast<float>(sensor.x);
-  const float ty = static_cast<float>(sensor.y);
-  const float width = static_cast<float>(g.width);
-  const float height = static_cast<float>(g.height);
+  const GridPlacer place(field.geometry(), sensor);
   double sum = 0.0;
   for (std::size_t i = 0; i < points.x.size(); i += step) {
-    const float gx = c * points.x[i] - s * points.y[i] + tx;
-    const float gy = s * points.x[i] + c * points.y[i] + ty;
-    sum += gx >= 0.0f && gy >= 0.0f && gx < width && gy < height
-               ? field.log_likelihood(static_cast<int>(gx), static_cast<int>(gy))
-               : field.off_map_log_likelihood();
+    int cx = 0;
+    int cy = 0;
+    sum +=
+        place.cell(points.x[i], points.y[i], &cx, &cy) ? field.log_likelihood(cx, cy) : field.off_map_log_likelihood();
   }
   return sum;
 }
