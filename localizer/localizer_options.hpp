@@ -121,8 +121,9 @@ struct StatusOptions {
 // Local scan matching (local_match.hpp) while tracking: when the scan fits
 // the predicted pose worse than `below`, the pose within the window that
 // explains the scan best is searched, and if it fits at least `gain` better
-// than the best pose near the prediction and than the best other place in the
-// window, `fraction` of the particles (the least likely) are put around it.
+// than the best pose near the prediction, `fraction` of the particles (the
+// least likely) are put around it; half of them around the best other place
+// in the window if that fits about as well (within `gain`).
 // The odometry's failures (a lost sign, a turn measured short) are then
 // corrected from the scan before the cloud has left the right place.
 struct LocalMatchOptions {

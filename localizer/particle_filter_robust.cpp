@@ -152,11 +152,10 @@ void ParticleFilter::match_locally(const ScanPoints& points, double sweep_turn, 
   if (fit_before >= o.below) {
     return;  // the odometry explained this scan: nothing to correct
   }
-  // Only a match clearly better than anything else the scan fits says the
-  // odometry failed: than the best pose the cloud itself reaches (about its
-  // spread while tracking), and than the best other place in the window.
-  // Where two fit about as well (a corridor, a scan an unmapped object covers
-  // in part) the scan cannot tell them apart and the odometry is the judge.
+  // Only a match clearly better than the best pose the cloud itself reaches
+  // (about its spread while tracking) says the odometry failed; where that
+  // fits about as well (a corridor, a scan an unmapped object covers in part)
+  // the odometry is the judge.
   const LocalMatch match = slamer::match_locally(field_, points, mount_, predicted,
                                                  {o.shift, o.turn, kMatchShiftStep, kMatchTurnStep, kMatchBeams});
   const double fit_after = fit_at(match.pose);
@@ -165,16 +164,27 @@ void ParticleFilter::match_locally(const ScanPoints& points, double sweep_turn, 
   }
   const LocalMatch near = slamer::match_locally(
       field_, points, mount_, predicted, {kNearShift, kNearTurn, kMatchShiftStep / 2.0, kMatchTurnStep, kMatchBeams});
-  if (fit_after < std::max(fit_at(near.pose), fit_at(match.runner_up)) + o.gain) {
+  const double fit_near = fit_at(near.pose);
+  if (fit_after < fit_near + o.gain) {
     return;
   }
-  // Around the match, within the grid's step, so the full model can refine it.
+  // Another place in the window that fits about as well, and as clearly
+  // better than near the prediction, is as likely: half the particles go
+  // there, and the next scans decide. (With few beams the two often differ by
+  // a beam or two: fr079 at 60 beams, where the odometry lost the sign of
+  // translation, lost track when only a clear winner was taken.)
+  std::vector<Pose2> centres{match.pose};
+  const double fit_runner_up = fit_at(match.runner_up);
+  if (fit_after < fit_runner_up + o.gain && fit_runner_up >= std::max(fit_near + o.gain, options_.status.fit_confirm)) {
+    centres.push_back(match.runner_up);
+  }
+  // Around each, within the grid's step, so the full model can refine it.
   std::normal_distribution<double> shift(0.0, kMatchShiftStep / 2.0);
   std::normal_distribution<double> turn(0.0, kMatchTurnStep / 2.0);
   std::vector<Pose2> poses;
   for (int k = 0; k < count; ++k) {
-    poses.push_back(
-        {match.pose.x + shift(rng_), match.pose.y + shift(rng_), wrap_angle(match.pose.theta + turn(rng_))});
+    const Pose2& c = centres[static_cast<std::size_t>(k) % centres.size()];
+    poses.push_back({c.x + shift(rng_), c.y + shift(rng_), wrap_angle(c.theta + turn(rng_))});
   }
   replace_least_likely(poses);
   result->matched = count;

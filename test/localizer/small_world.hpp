@@ -15,27 +15,30 @@
 
 namespace slamer {
 
+// The scan `robot`'s lidar takes in `world` from `pose` (noise-free ranges up to 30 m).
+inline LaserScan simulated_scan(const TrueWorld& world, const RobotOptions& robot, const Pose2& pose) {
+  LaserScan scan;
+  scan.angle_min = robot.lidar.angle_min;
+  scan.angle_increment = robot.lidar.angle_increment();
+  scan.range_min = static_cast<float>(robot.lidar.range_min);
+  scan.range_max = static_cast<float>(robot.lidar.range_max);
+  std::mt19937 rng(4);
+  const Pose2 sensor = compose(pose, robot.lidar.mount);
+  for (int i = 0; i < robot.lidar.beams; ++i) {
+    const double r =
+        world.cast({sensor.x, sensor.y}, sensor.theta + scan.angle(static_cast<std::size_t>(i)), 31.0, 0.0, rng);
+    scan.ranges.push_back(r <= 30.0 ? static_cast<float>(r) : std::numeric_limits<float>::infinity());
+  }
+  return scan;
+}
+
 struct SmallWorld {
   WorldOptions options = load_options<WorldOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml");
   RobotOptions robot = load_options<RobotOptions>(options.robot_path);
   SemanticMap map = load_semantic_map(options.map_path);
   TrueWorld world{map, options, "small_room"};
 
-  LaserScan scan_at(const Pose2& pose) const {
-    LaserScan scan;
-    scan.angle_min = robot.lidar.angle_min;
-    scan.angle_increment = robot.lidar.angle_increment();
-    scan.range_min = static_cast<float>(robot.lidar.range_min);
-    scan.range_max = static_cast<float>(robot.lidar.range_max);
-    std::mt19937 rng(4);
-    const Pose2 sensor = compose(pose, robot.lidar.mount);
-    for (int i = 0; i < robot.lidar.beams; ++i) {
-      const double r =
-          world.cast({sensor.x, sensor.y}, sensor.theta + scan.angle(static_cast<std::size_t>(i)), 31.0, 0.0, rng);
-      scan.ranges.push_back(r <= 30.0 ? static_cast<float>(r) : std::numeric_limits<float>::infinity());
-    }
-    return scan;
-  }
+  LaserScan scan_at(const Pose2& pose) const { return simulated_scan(world, robot, pose); }
 };
 
 // A scan's returns (not max range) as end points in the sensor frame, in cells of `resolution`.
