@@ -67,5 +67,27 @@ TEST(EvalSuite, SummaryHasTheMeanAndTheWorst) {
   EXPECT_NE(text.find("b                      0.0   100.0     0.0  2"), std::string::npos) << text;
 }
 
+// With two localizer seeds a world has two rows; the goals' counts take its
+// mean over them (world 5: SLAMER 95 and 88.5 % against the map's 92 and
+// 88 %, +1.75 points on the mean though the second run alone is +0.5).
+TEST(EvalSuite, TheGoalsCountEachWorldOnceOnItsMeanOverTheLocalizerSeeds) {
+  EvalOptions options;
+  options.classes = {{"a", "", std::nullopt}, {"b", "", std::nullopt}};
+  WorldResult second = world(5, 6.0, 4.0, 0.80, 0.88, 0.885);
+  second.localizer_seed = 2;
+  const std::string text =
+      render_summary({world(5, 4.0, 3.0, 0.80, 0.92, 0.95), second, world(6, 8.0, 5.0, 0.70, 0.96, 0.92)}, options);
+  EXPECT_NE(text.find("\n5        "), std::string::npos) << text;
+  EXPECT_NE(text.find("\n5/2      "), std::string::npos) << text;
+  EXPECT_NE(text.find("map-based + 1 point on 1 of 2 worlds, >= recognizer + 5 points on 2 (each world's mean over "
+                      "its localizer seeds)"),
+            std::string::npos)
+      << text;
+  // The mean and worst rows are over the three runs.
+  EXPECT_NE(text.find("mean          6.00      6.00      4.00"), std::string::npos) << text;
+  EXPECT_NE(text.find("=== 2 worlds (3 runs): "), std::string::npos) << text;
+  EXPECT_NE(render_world(second, options).find("=== world 5, localizer seed 2: "), std::string::npos);
+}
+
 }  // namespace
 }  // namespace slamer

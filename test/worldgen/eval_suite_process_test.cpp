@@ -1,5 +1,6 @@
 // slamer-eval-suite as a program: 3 generated test worlds with short routes
-// through the whole offline pipeline, the tables and matrices printed.
+// through the whole offline pipeline, each localized with 2 localizer seeds,
+// the tables and matrices printed.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,17 +19,22 @@ TEST(SlamerEvalSuite, ThreeShortWorlds) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/short.yaml") << "corridor: {length_min: 14, length_max: 20}\n"
                                      << "route: {rooms_min: 1, rooms_max: 1, corridor_fraction: 0.3}\n";
-  test::ChildProcess suite(test::binary_path("slamer-eval-suite"),
-                           {"--worlds", "3", "--seed", "0", "--out", dir + "/out", "--gen-config", dir + "/short.yaml",
-                            "--jobs", "3", "--config", std::string(SLAMER_SOURCE_DIR) + "/config/eval.yaml"});
+  test::ChildProcess suite(
+      test::binary_path("slamer-eval-suite"),
+      {"--worlds", "3", "--seed", "0", "--out", dir + "/out", "--gen-config", dir + "/short.yaml", "--jobs", "3",
+       "--localizer-seeds", "2", "--config", std::string(SLAMER_SOURCE_DIR) + "/config/eval.yaml"});
   ASSERT_EQ(suite.wait(170.0).value_or(-1), 0) << suite.stderr_text();
   const std::string out = suite.stdout_text();
   for (const std::string world : {"100000", "100001", "100002"}) {
     EXPECT_NE(out.find("=== world " + world + ":"), std::string::npos) << out;
+    EXPECT_NE(out.find("=== world " + world + ", localizer seed 2:"), std::string::npos) << out;
+    EXPECT_NE(out.find("\n" + world + "/2 "), std::string::npos) << "a summary row per localizer seed";
     EXPECT_TRUE(std::filesystem::exists(dir + "/out/world_" + world + "/world/differences.yaml"));
     EXPECT_FALSE(std::filesystem::exists(dir + "/out/world_" + world + "/sim.lcm")) << "logs are not kept";
   }
   EXPECT_NE(out.find("Pose error [cm / deg]  Ave"), std::string::npos);
+  EXPECT_NE(out.find("slamer-s2.lcm"), std::string::npos) << "the seed-2 runs' column names";
+  EXPECT_NE(out.find("of 3 worlds"), std::string::npos) << "the goals count worlds, not runs";
   for (const std::string title : {"Recognizer (rows", "Map-based (SLAMER's pose) (rows", "SLAMER (rows"}) {
     EXPECT_NE(out.find(title), std::string::npos) << title;
   }

@@ -7,6 +7,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "tools/eval/eval_config.hpp"
 #include "tools/eval_suite/suite_report.hpp"
@@ -16,8 +17,9 @@ namespace slamer {
 struct SuiteSetup {
   std::string bin_dir;  // where the programs are
   std::string sim_config, recognizer_config, localizer_config;
-  std::string gen_config;  // "" = the generator's defaults
-  int jobs = 2;            // localizer runs at once
+  std::string gen_config;   // "" = the generator's defaults
+  int jobs = 2;             // localizer runs at once
+  int localizer_seeds = 1;  // each mode runs with localizer seeds 1..this
   bool keep_logs = false;
   bool reuse_logs = false;  // score the logs a kept earlier run left instead of running again
 };
@@ -29,7 +31,12 @@ struct SuiteSetup {
 std::pair<std::string, std::string> simulate_world(const SuiteSetup& setup, uint64_t seed,
                                                    const std::string& directory);
 
-// Runs everything in `directory`; throws std::runtime_error naming the step that failed.
-WorldResult run_world(const SuiteSetup& setup, const EvalConfig& eval, uint64_t seed, const std::string& directory);
+// The log of a localizer run: MODE.lcm for localizer seed 1, MODE-sS.lcm for seed S.
+std::string localizer_log(const std::string& mode, int localizer_seed);
+
+// Runs everything in `directory`, one result per localizer seed (1..setup.localizer_seeds);
+// throws std::runtime_error naming the step that failed.
+std::vector<WorldResult> run_world(const SuiteSetup& setup, const EvalConfig& eval, uint64_t seed,
+                                   const std::string& directory);
 
 }  // namespace slamer

@@ -126,9 +126,11 @@ std::string render_world(const WorldResult& world, const EvalOptions& options) {
     differ += d.map_state != d.truth_state ? 1 : 0;
     change += d.changes.empty() ? 0 : 1;
   }
-  out << "=== world " << world.seed << ": " << world.differences.doors.size() << " doors (" << differ
-      << " in another state than the map, " << change << " changing during the run), " << world.differences.added
-      << " objects added, " << world.differences.removed << " removed\n"
+  out << "=== world " << world.seed
+      << (world.localizer_seed != 1 ? ", localizer seed " + std::to_string(world.localizer_seed) : std::string())
+      << ": " << world.differences.doors.size() << " doors (" << differ << " in another state than the map, " << change
+      << " changing during the run), " << world.differences.added << " objects added, " << world.differences.removed
+      << " removed\n"
       << render_table(world.runs, options) << doors_text(world.doors, kOther) << "\n"
       << doors_text(world.changing_doors, kChanging) << "\n";
   return out.str();
@@ -137,7 +139,15 @@ std::string render_world(const WorldResult& world, const EvalOptions& options) {
 std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOptions& options) {
   std::ostringstream out;
   char text[64];
-  out << "\n=== " << worlds.size() << " worlds: pose error (mean per run), lost, ER Acc of the SLAMER run "
+  std::vector<uint64_t> seeds;
+  for (const WorldResult& w : worlds) {
+    if (std::find(seeds.begin(), seeds.end(), w.seed) == seeds.end()) {
+      seeds.push_back(w.seed);
+    }
+  }
+  out << "\n=== " << seeds.size() << " worlds"
+      << (seeds.size() != worlds.size() ? " (" + std::to_string(worlds.size()) + " runs)" : std::string())
+      << ": pose error (mean per run), lost, ER Acc of the SLAMER run "
       << "(recognizer, map-based, SLAMER), and over the objects where the map differs from the truth\n";
   std::snprintf(text, sizeof(text), "%-8s", "world");
   out << text;
@@ -148,7 +158,9 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
   out << "\n";
   std::vector<std::vector<double>> values(columns().size());
   for (const WorldResult& w : worlds) {
-    std::snprintf(text, sizeof(text), "%-8llu", static_cast<unsigned long long>(w.seed));
+    const std::string label =
+        std::to_string(w.seed) + (w.localizer_seed != 1 ? "/" + std::to_string(w.localizer_seed) : std::string());
+    std::snprintf(text, sizeof(text), "%-8s", label.c_str());
     out << text;
     for (std::size_t c = 0; c < columns().size(); ++c) {
       const double v = columns()[c].value(w);
@@ -176,15 +188,33 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
     }
     out << "\n";
   }
-  int above_map = 0, above_recognizer = 0, counted = 0;
+  // Per world, the mean over its localizer seeds' runs, in the order the worlds came.
+  struct Means {
+    uint64_t seed;
+    double slamer = 0.0, map_based = 0.0, recognizer = 0.0;
+    int runs = 0;
+  };
+  std::vector<Means> per_world;
   for (const WorldResult& w : worlds) {
     const RunScores& s = slamer_run(w);
-    if (s.slamer.scans > 0 && s.map_based.scans > 0) {
-      ++counted;
-      above_map += s.slamer.mean >= s.map_based.mean + 0.01 ? 1 : 0;
-      above_recognizer += s.slamer.mean >= s.recognizer.mean + 0.05 ? 1 : 0;
+    if (s.slamer.scans == 0 || s.map_based.scans == 0) {
+      continue;
     }
+    auto m = std::find_if(per_world.begin(), per_world.end(), [&](const Means& x) { return x.seed == w.seed; });
+    if (m == per_world.end()) {
+      m = per_world.insert(per_world.end(), Means{w.seed});
+    }
+    m->slamer += s.slamer.mean;
+    m->map_based += s.map_based.mean;
+    m->recognizer += s.recognizer.mean;
+    ++m->runs;
   }
+  int above_map = 0, above_recognizer = 0;
+  for (const Means& m : per_world) {
+    above_map += m.slamer >= m.map_based + 0.01 * m.runs ? 1 : 0;
+    above_recognizer += m.slamer >= m.recognizer + 0.05 * m.runs ? 1 : 0;
+  }
+  const int counted = static_cast<int>(per_world.size());
   DoorScores doors, changing;
   for (const WorldResult& w : worlds) {
     doors.merge(w.doors);
@@ -193,7 +223,8 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
   out << "All worlds: " << doors_text(doors, kOther) << "\n"
       << "All worlds: " << doors_text(changing, kChanging) << "\n";
   out << "SLAMER ER Acc >= map-based + 1 point on " << above_map << " of " << counted << " worlds, >= recognizer + 5 "
-      << "points on " << above_recognizer << "\n\n";
+      << "points on " << above_recognizer
+      << (worlds.size() > per_world.size() ? " (each world's mean over its localizer seeds)" : "") << "\n\n";
   Confusion recognizer, map_based, slamer;
   for (const WorldResult& w : worlds) {
     recognizer.merge(slamer_run(w).recognizer_confusion);

@@ -21,8 +21,10 @@ namespace slamer {
 constexpr uint64_t kTrainingSeedsEnd = 100000;
 uint64_t test_world_seed(uint64_t suite_seed, int index);
 
+// One world with one localizer seed.
 struct WorldResult {
   uint64_t seed = 0;
+  int localizer_seed = 1;
   MapDifferences differences;
   std::vector<NamedRun> runs;  // lfm, slfm, slamer in this order
   DoorScores doors;            // the doors in another state than the map, in the SLAMER run
@@ -30,6 +32,8 @@ struct WorldResult {
 };
 
 std::string render_world(const WorldResult& world, const EvalOptions& options);
+// Over every run of `worlds` (a world once per localizer seed): the goals'
+// counts ("on N of M worlds") take each world's mean over its localizer seeds.
 std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOptions& options);
 
 }  // namespace slamer
