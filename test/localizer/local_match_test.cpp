@@ -39,22 +39,29 @@ TEST_F(LocalMatchTest, FindsThePoseFromAPredictionOffByAFailingOdometrysError) {
   }
 }
 
-// A corridor with posts every 0.4 m along both walls: a scan there fits every
-// 0.4 m. The runner-up is the next such place, not the best one's shoulder,
-// and it fits about as well (what makes the filter leave such a match alone).
-TEST(LocalMatch, TheRunnerUpIsAnotherPlaceTheScanFitsNotTheBestOnesShoulder) {
+// A map at 5 cm of `width` x `height` cells, occupied where `occupied(x, y)`.
+template <typename Occupied>
+SemanticMap grid_map(int width, int height, Occupied occupied) {
   SemanticMap map;
-  map.geometry.width = 240;  // 12 m x 3 m at 5 cm
-  map.geometry.height = 60;
+  map.geometry.width = width;
+  map.geometry.height = height;
   map.geometry.resolution = 0.05;
   map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
   map.labels.assign(map.geometry.size(), -1);
-  const auto wall = [&](int x, int y) { return y == 0 || y == 59 || ((y == 1 || y == 58) && x % 8 < 2); };
-  for (int y = 0; y < 60; ++y) {
-    for (int x = 0; x < 240; ++x) {
-      map.occupancy[map.geometry.index(x, y)] = wall(x, y) ? Occupancy::kOccupied : Occupancy::kFree;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      map.occupancy[map.geometry.index(x, y)] = occupied(x, y) ? Occupancy::kOccupied : Occupancy::kFree;
     }
   }
+  return map;
+}
+
+// A corridor with posts every 0.4 m along both walls: a scan there fits every
+// 0.4 m. The runner-up is the next such place, not the best one's shoulder,
+// and it fits about as well (what makes the filter put particles at both).
+TEST(LocalMatch, TheRunnerUpIsAnotherPlaceTheScanFitsNotTheBestOnesShoulder) {
+  const auto wall = [](int x, int y) { return y == 0 || y == 59 || ((y == 1 || y == 58) && x % 8 < 2); };
+  const SemanticMap map = grid_map(240, 60, wall);  // 12 m x 3 m
   const LikelihoodField corridor(std::make_shared<const DistanceField>(obstacle_distance_field(map, 1.2)), {});
   // The walls' cells within 4 m, seen from the sensor at (6.0, 1.5), heading 0.
   const Pose2 truth{6.0, 1.5, 0.0};
@@ -107,19 +114,9 @@ TEST_F(LocalMatchTest, WithoutPointsKeepsThePrediction) {
 // A corridor 4 m wide with fins 1 m deep every 0.6 m along both walls,
 // longer than the lidar reaches: a scan in it fits every 0.6 m along it.
 SemanticMap finned_corridor() {
-  SemanticMap map;
-  map.geometry.width = 1600;  // 80 m x 4 m at 5 cm
-  map.geometry.height = 80;
-  map.geometry.resolution = 0.05;
-  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
-  map.labels.assign(map.geometry.size(), -1);
-  for (int y = 0; y < 80; ++y) {
-    for (int x = 0; x < 1600; ++x) {
-      const bool wall = y == 0 || y == 79 || ((y < 20 || y >= 60) && x % 12 < 2);
-      map.occupancy[map.geometry.index(x, y)] = wall ? Occupancy::kOccupied : Occupancy::kFree;
-    }
-  }
-  return map;
+  return grid_map(1600, 80, [](int x, int y) {  // 80 m x 4 m
+    return y == 0 || y == 79 || ((y < 20 || y >= 60) && x % 12 < 2);
+  });
 }
 
 // The odometry says the robot went 0.3 m, half the fins' period, while it
