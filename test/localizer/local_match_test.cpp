@@ -4,6 +4,7 @@
 // prediction.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/config/config_reader.hpp"
@@ -150,7 +151,7 @@ TEST(LocalMatchInTheFilter, AScanThatFitsTwoPlacesAboutEquallyPutsParticlesAtBot
     });
   };
   // The weights decide how many each place keeps (resampled or not): both
-  // keep some, and together they hold most of the cloud's particles.
+  // keep at least as many as the 25 put there.
   EXPECT_GE(near(truth.x), 25) << near(truth.x) << " at the truth, " << near(truth.x + 0.6) << " a fin further";
   EXPECT_GE(near(truth.x + 0.6), 25) << near(truth.x) << " at the truth, " << near(truth.x + 0.6) << " a fin further";
 }
