@@ -86,6 +86,7 @@ TEST(EvalSuite, TheGoalsCountEachWorldOnceOnItsMeanOverTheLocalizerSeeds) {
   // The mean and worst rows are over the three runs.
   EXPECT_NE(text.find("mean          6.00      6.00      4.00"), std::string::npos) << text;
   EXPECT_NE(text.find("=== 2 worlds (3 runs): "), std::string::npos) << text;
+  EXPECT_NE(text.find("\nAll runs: "), std::string::npos) << "door counts are per run" << text;
   EXPECT_NE(render_world(second, options).find("=== world 5, localizer seed 2: "), std::string::npos);
 }
 

@@ -220,8 +220,9 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
     doors.merge(w.doors);
     changing.merge(w.changing_doors);
   }
-  out << "All worlds: " << doors_text(doors, kOther) << "\n"
-      << "All worlds: " << doors_text(changing, kChanging) << "\n";
+  // With several localizer seeds a door counts once per run.
+  const std::string all = seeds.size() != worlds.size() ? "All runs: " : "All worlds: ";
+  out << all << doors_text(doors, kOther) << "\n" << all << doors_text(changing, kChanging) << "\n";
   out << "SLAMER ER Acc >= map-based + 1 point on " << above_map << " of " << counted << " worlds, >= recognizer + 5 "
       << "points on " << above_recognizer
       << (worlds.size() > per_world.size() ? " (each world's mean over its localizer seeds)" : "") << "\n\n";
