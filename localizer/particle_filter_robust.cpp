@@ -168,14 +168,18 @@ void ParticleFilter::match_locally(const ScanPoints& points, double sweep_turn, 
   if (fit_after < fit_near + o.gain) {
     return;
   }
-  // Another place in the window that fits about as well, and as clearly
-  // better than near the prediction, is as likely: half the particles go
-  // there, and the next scans decide. (With few beams the two often differ by
+  // Another place in the window that fits about as well is as likely: if it
+  // too fits clearly better than near the prediction, half the particles go
+  // there and the next scans decide (with few beams the two often differ by
   // a beam or two: fr079 at 60 beams, where the odometry lost the sign of
-  // translation, lost track when only a clear winner was taken.)
+  // translation, lost track when only a clear winner was taken); if not, the
+  // scan does not say the odometry failed.
   std::vector<Pose2> centres{match.pose};
   const double fit_runner_up = fit_at(match.runner_up);
-  if (fit_after < fit_runner_up + o.gain && fit_runner_up >= std::max(fit_near + o.gain, options_.status.fit_confirm)) {
+  if (fit_after < fit_runner_up + o.gain) {
+    if (fit_runner_up < std::max(fit_near + o.gain, options_.status.fit_confirm)) {
+      return;
+    }
     centres.push_back(match.runner_up);
   }
   // Around each, within the grid's step, so the full model can refine it.
