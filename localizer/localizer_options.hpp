@@ -122,8 +122,9 @@ struct StatusOptions {
 // the predicted pose worse than `below`, the pose within the window that
 // explains the scan best is searched, and if it fits at least `gain` better
 // than the best pose near the prediction, `fraction` of the particles (the
-// least likely) are put around it; half of them around the best other place
-// in the window if that fits about as well (within `gain`).
+// least likely) are put around it. If the best other place in the window fits
+// about as well (within `gain`), half of them go there when it too fits `gain`
+// better than near the prediction, and none anywhere otherwise.
 // The odometry's failures (a lost sign, a turn measured short) are then
 // corrected from the scan before the cloud has left the right place.
 struct LocalMatchOptions {

@@ -145,8 +145,9 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
       seeds.push_back(w.seed);
     }
   }
+  const bool several_seeds = seeds.size() != worlds.size();  // some world ran with more than one localizer seed
   out << "\n=== " << seeds.size() << " worlds"
-      << (seeds.size() != worlds.size() ? " (" + std::to_string(worlds.size()) + " runs)" : std::string())
+      << (several_seeds ? " (" + std::to_string(worlds.size()) + " runs)" : std::string())
       << ": pose error (mean per run), lost, ER Acc of the SLAMER run "
       << "(recognizer, map-based, SLAMER), and over the objects where the map differs from the truth\n";
   std::snprintf(text, sizeof(text), "%-8s", "world");
@@ -221,11 +222,11 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
     changing.merge(w.changing_doors);
   }
   // With several localizer seeds a door counts once per run.
-  const std::string all = seeds.size() != worlds.size() ? "All runs: " : "All worlds: ";
+  const std::string all = several_seeds ? "All runs: " : "All worlds: ";
   out << all << doors_text(doors, kOther) << "\n" << all << doors_text(changing, kChanging) << "\n";
   out << "SLAMER ER Acc >= map-based + 1 point on " << above_map << " of " << counted << " worlds, >= recognizer + 5 "
-      << "points on " << above_recognizer
-      << (worlds.size() > per_world.size() ? " (each world's mean over its localizer seeds)" : "") << "\n\n";
+      << "points on " << above_recognizer << (several_seeds ? " (each world's mean over its localizer seeds)" : "")
+      << "\n\n";
   Confusion recognizer, map_based, slamer;
   for (const WorldResult& w : worlds) {
     recognizer.merge(slamer_run(w).recognizer_confusion);
