@@ -54,5 +54,14 @@ TEST(SlamerEvalSuite, ThreeShortWorlds) {
   EXPECT_EQ(test::read_file(dir + "/out/summary.txt"), out);
 }
 
+// A bad --localizer-seeds stops the suite at once with one line naming the flag.
+TEST(SlamerEvalSuite, RefusesLocalizerSeedsOutOfRange) {
+  for (const std::string bad : {"0", "101", "-2"}) {
+    test::ChildProcess suite(test::binary_path("slamer-eval-suite"), {"--localizer-seeds", bad});
+    ASSERT_EQ(suite.wait(10.0).value_or(-1), 2) << bad << ": " << suite.stderr_text();
+    EXPECT_NE(suite.stderr_text().find("--localizer-seeds in 1..100"), std::string::npos) << suite.stderr_text();
+  }
+}
+
 }  // namespace
 }  // namespace slamer
