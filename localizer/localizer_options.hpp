@@ -66,6 +66,14 @@ struct SlamerOptions {
   // door, and the prior cannot tell them apart. Not in the particle weights:
   // there it pulled the pose off doorways (README, "Calibrated across worlds").
   double free_space_margin = 0.45;
+  // Eq. (7) in the particle weights as a mixture: with this probability an
+  // object is one the map lacks (furniture added, a door moved), whose prior
+  // does not depend on the pose, as LFM's z_rand does for beams. Without it an
+  // unmapped object recognized as a wall pulls the pose onto the nearest mapped
+  // wall. 0 is the paper's prior; 0.135 (exp(-2)) puts the floor where the
+  // Gaussian is at 2 sigma. Not in the class posteriors: there a floor would
+  // let the recognizer's false doors stand against the map.
+  double unmapped_probability = 0.135;
   // The classes the recognizer emits (its config's `classes`, in LINE_OBJECTS).
   std::vector<std::string> recognition_classes = paper_recognition_classes();
   // Recognition class -> the map class whose cells it lies on ("" = free space).

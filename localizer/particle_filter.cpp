@@ -263,7 +263,7 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
 }
 
 double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
-                                              const DistanceField& free_space,
+                                              const DistanceField& free_space, double unmapped_probability,
                                               std::vector<std::vector<double>>* class_terms) const {
   // The sensor pose in grid cells: one transform per particle.
   const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
@@ -273,6 +273,8 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   // An object off the map, or a class with no cells, is this far from it: the
   // same for every pose, so it neither helps nor hurts.
   const double far = 3.0 * options_.slamer.prior_sigma;
+  // Most classes have no cell near an object: their prior is this one value.
+  const double prior_at_far = log_map_prior(far, options_.slamer.prior_sigma, unmapped_probability);
   double total = 0.0;
   std::vector<double> terms;
   std::vector<Cell> cells;  // sample cells on the map; off-map samples are left out
@@ -300,7 +302,8 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
         }
         d = sum / static_cast<double>(o.samples.size());
       }
-      terms[l] = o.log_recognition[l] + log_normal_density(d, options_.slamer.prior_sigma);
+      terms[l] = o.log_recognition[l] +
+                 (d == far ? prior_at_far : log_map_prior(d, options_.slamer.prior_sigma, unmapped_probability));
     }
     total += options_.slamer.object_weight * log_sum_exp(terms);
     if (class_terms != nullptr) {
@@ -315,7 +318,8 @@ double ParticleFilter::object_log_likelihood(const Pose2& pose, const LineObject
   LineObjectSet set;
   set.class_names = classes;
   set.objects = {object};
-  return objects_log_likelihood(pose, prepare_objects(set), *free_distance_, nullptr);
+  return objects_log_likelihood(pose, prepare_objects(set), *free_distance_, options_.slamer.unmapped_probability,
+                                nullptr);
 }
 
 double ParticleFilter::scan_log_likelihood(const Pose2& pose, const LaserScan& scan) const {
@@ -339,8 +343,9 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     beam_part[i] = beams_log_likelihood(particles_[i].pose, beams);
     log_likelihood[i] =
-        beam_part[i] +
-        (use_objects ? objects_log_likelihood(particles_[i].pose, prepared_objects, *free_distance_, nullptr) : 0.0);
+        beam_part[i] + (use_objects ? objects_log_likelihood(particles_[i].pose, prepared_objects, *free_distance_,
+                                                             options_.slamer.unmapped_probability, nullptr)
+                                    : 0.0);
     particles_[i].log_weight += log_likelihood[i];
   }
   // Normalize in log space.
@@ -367,7 +372,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
       static_cast<std::size_t>(std::max_element(log_likelihood.begin(), log_likelihood.end()) - log_likelihood.begin());
   const Pose2 best_sensor = compose(particles_[best].pose, mount_);
   std::vector<std::vector<double>> class_terms;
-  objects_log_likelihood(particles_[best].pose, prepared_objects, *free_label_distance_, &class_terms);
+  objects_log_likelihood(particles_[best].pose, prepared_objects, *free_label_distance_, 0.0, &class_terms);
   result.semantic.utime = scan.utime;
   result.semantic.seq = scan.seq;
   result.semantic.class_names = prepared_objects.class_names;

@@ -112,9 +112,10 @@ class ParticleFilter {
   PreparedScan prepare(const LaserScan& scan, const LineObjectSet* objects) const;
   PreparedObjects prepare_objects(const LineObjectSet& objects) const;
   double beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const;
-  // `free_space`: the distances free-space classes are scored by (Eq. (7)).
+  // `free_space`: the distances free-space classes are scored by (Eq. (7));
+  // `unmapped_probability`: Eq. (7)'s floor (log_map_prior).
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects, const DistanceField& free_space,
-                                std::vector<std::vector<double>>* class_terms) const;
+                                double unmapped_probability, std::vector<std::vector<double>>* class_terms) const;
   void resample();
   void inject(const ScanPoints& points, UpdateResult* result);
   // `sweep_turn`: how far the robot turned while the scan was taken [rad].

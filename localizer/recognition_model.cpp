@@ -40,6 +40,14 @@ double log_normal_density(double d, double sigma) {
   return -0.5 * (d / sigma) * (d / sigma) - std::log(sigma * std::sqrt(2.0 * std::numbers::pi));
 }
 
+double log_map_prior(double d, double sigma, double unmapped_probability) {
+  if (unmapped_probability <= 0.0) {
+    return log_normal_density(d, sigma);
+  }
+  const double mapped = (1.0 - unmapped_probability) * std::exp(-0.5 * (d / sigma) * (d / sigma));
+  return log_normal_density(0.0, sigma) + std::log(mapped + unmapped_probability);
+}
+
 double log_sum_exp(const std::vector<double>& terms) {
   if (terms.empty()) {
     return -std::numeric_limits<double>::infinity();

@@ -33,6 +33,11 @@ std::vector<float> divide_out_prior(const std::vector<float>& probs, const std::
 // log N(d; 0, sigma) (a density, with its normalizer).
 double log_normal_density(double d, double sigma);
 
+// Eq. (7)'s map prior with a floor: log of (1 - u) N(d; 0, sigma) + u N(0; 0, sigma),
+// u the probability that the object is not in the map at all (then its
+// distance to the map says nothing). u = 0 is log_normal_density.
+double log_map_prior(double d, double sigma, double unmapped_probability);
+
 // log of sum_l exp(terms[l]), stable; -inf for an empty list.
 double log_sum_exp(const std::vector<double>& terms);
 

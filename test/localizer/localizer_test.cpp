@@ -9,6 +9,7 @@
 #include "localizer/particle_filter.hpp"
 #include "localizer/recognition_model.hpp"
 #include "recognizer/line_recognizer.hpp"
+#include "test/localizer/options_error.hpp"
 #include "test/localizer/small_world.hpp"
 #include "tools/sim/simulator.hpp"
 
@@ -53,6 +54,16 @@ TEST(RecognitionModel, NormalAndLogSumExp) {
   EXPECT_NEAR(log_sum_exp({-1000.0, -1000.0}), -1000.0 + std::log(2.0), 1e-12);
   EXPECT_NEAR(log_sum_exp({std::log(0.25), std::log(0.5)}), std::log(0.75), 1e-12);
   EXPECT_TRUE(std::isinf(log_sum_exp({})));
+}
+
+TEST(RecognitionModel, MapPriorWithAFloorForObjectsTheMapLacks) {
+  EXPECT_DOUBLE_EQ(log_map_prior(0.3, 0.15, 0.0), log_normal_density(0.3, 0.15));
+  // On the class's cells the floor changes nothing; far from them it is all that is left.
+  EXPECT_NEAR(log_map_prior(0.0, 0.15, 0.2), log_normal_density(0.0, 0.15), 1e-12);
+  EXPECT_NEAR(log_map_prior(5.0, 0.15, 0.2), log_normal_density(0.0, 0.15) + std::log(0.2), 1e-12);
+  // One sigma out: log(0.8 exp(-1/2) + 0.2) above the peak.
+  EXPECT_NEAR(log_map_prior(0.15, 0.15, 0.2) - log_normal_density(0.0, 0.15), std::log(0.8 * std::exp(-0.5) + 0.2),
+              1e-12);
 }
 
 TEST(MotionModel, NoiselessMotionIsExactAndNoiseHasTheRightSpread) {
@@ -119,6 +130,47 @@ TEST(ParticleFilter, SlamerTermDiscriminatesRightFromWrongPose) {
   const double right = filter.object_log_likelihood(truth, door, classes);
   EXPECT_GT(right, filter.object_log_likelihood({4.0, 4.2, 0.0}, door, classes) + 1.0);
   EXPECT_GT(right, filter.object_log_likelihood({3.4, 3.0, 0.0}, door, classes) + 1.0);
+}
+
+// A cabinet against nothing: a wall-like object 0.4 m from the room's top wall,
+// in free space on the map (the map lacks it). Under the paper's Eq. (7) the
+// object is best explained by the nearest wall, so a pose 10 cm towards that
+// wall scores better, and each scan pulls the pose there (world 102006 of the
+// suite: SLAMER 10 cm off along a cabinet, then lost). With the floor the pull
+// is a fraction of that, while a mapped door still tells right from wrong
+// (SlamerTermDiscriminatesRightFromWrongPose runs with the shipped floor).
+TEST(ParticleFilter, AWallTheMapLacksPullsThePoseFarLessTowardsTheNearestMappedWall) {
+  const SmallWorld w;
+  const Pose2 truth{3.6, 3.0, kPi / 2};
+  const Pose2 towards_wall{3.6, 3.1, kPi / 2};
+  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
+  const std::vector<std::string> classes = RecognizerOptions{}.classes;
+  LineObject cabinet;
+  cabinet.kind = LineKind::kPhysical;
+  cabinet.start = transform_point(inverse(sensor), {3.0, 5.55});
+  cabinet.end = transform_point(inverse(sensor), {4.2, 5.55});
+  cabinet.probs.assign(classes.size(), 0.014f);
+  cabinet.probs[static_cast<std::size_t>(std::find(classes.begin(), classes.end(), "others") - classes.begin())] = 0.9f;
+  const auto pull = [&](double unmapped_probability) {
+    LocalizerOptions options;
+    options.slamer.unmapped_probability = unmapped_probability;
+    const ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+    return filter.object_log_likelihood(towards_wall, cabinet, classes) -
+           filter.object_log_likelihood(truth, cabinet, classes);
+  };
+  const double paper = pull(0.0);
+  const double shipped = pull(LocalizerOptions{}.slamer.unmapped_probability);
+  EXPECT_GT(paper, 4.0);
+  EXPECT_LT(shipped, 0.45 * paper);  // 2.0 against 5.2 nats
+  EXPECT_GT(shipped, 0.0);           // still the closer wall, only much weaker
+}
+
+TEST(LocalizerOptions, UnmappedProbabilityIsAProbabilityBelowOne) {
+  EXPECT_EQ(localizer_options_error("slamer: {unmapped_probability: 0}\n"), "");
+  for (const char* bad : {"1", "-0.1", "nan"}) {
+    const std::string error = localizer_options_error(std::string("slamer: {unmapped_probability: ") + bad + "}\n");
+    EXPECT_NE(error.find("'slamer.unmapped_probability'"), std::string::npos) << bad << ": " << error;
+  }
 }
 
 // The recognizer cannot see a no-entry line: over the gap it says free space
