@@ -274,6 +274,9 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   // same for every pose, so it neither helps nor hurts.
   const double far = 3.0 * options_.slamer.prior_sigma;
   // Most classes have no cell near an object: their prior is this one value.
+  // d below is exactly `far` when every sample saturates (n times `far` over n,
+  // exact for the shipped 3 samples); where rounding leaves it an ulp off, the
+  // prior is computed instead, to the same value.
   const double prior_at_far = log_map_prior(far, options_.slamer.prior_sigma, unmapped_probability);
   double total = 0.0;
   std::vector<double> terms;
