@@ -17,7 +17,7 @@ namespace slamer::urg {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr int64_t kT0 = 1'700'000'000'000'000;
+constexpr int64_t kFeedStart = 1'700'000'000'000'000;
 
 SimModel model(const std::string& name) {
   SimModel m;
@@ -37,7 +37,7 @@ LaserScan urm_scan(int64_t utime) {
 }
 
 TEST(SimScanFrom, RangesBecomeDeviceValuesAndErrorCodes) {
-  LaserScan scan = urm_scan(kT0);
+  LaserScan scan = urm_scan(kFeedStart);
   scan.ranges[0] = 1.2345f;        // 1234.50005 mm: 1235
   scan.ranges[1] = 3.2304999f;     // 3230 mm
   scan.ranges[2] = kInf;           // no return
@@ -48,9 +48,9 @@ TEST(SimScanFrom, RangesBecomeDeviceValuesAndErrorCodes) {
   scan.ranges[7] = 30.2f;          // beyond DMAX: no object in range
   SimScan out;
   std::string error;
-  ASSERT_TRUE(sim_scan_from(scan, model("URM-40LC"), kT0 + 19000, &out, &error)) << error;
-  EXPECT_EQ(out.first_beam_us, kT0);
-  EXPECT_EQ(out.received_us, kT0 + 19000);
+  ASSERT_TRUE(sim_scan_from(scan, model("URM-40LC"), kFeedStart + 19000, &out, &error)) << error;
+  EXPECT_EQ(out.first_beam_us, kFeedStart);
+  EXPECT_EQ(out.received_us, kFeedStart + 19000);
   ASSERT_EQ(out.values.size(), 1081u);
   EXPECT_EQ(out.values[0], 1235u);
   EXPECT_EQ(out.values[1], 3230u);
@@ -83,23 +83,23 @@ TEST(SimScanFrom, Urg04HasNoTooNearCode) {
 TEST(SimScanFrom, AGeometryThatIsNotTheModelsIsRefusedWithAReason) {
   SimScan out;
   std::string error;
-  LaserScan scan = urm_scan(kT0);
+  LaserScan scan = urm_scan(kFeedStart);
   scan.ranges.resize(541);
-  EXPECT_FALSE(sim_scan_from(scan, model("URM-40LC"), kT0, &out, &error));
+  EXPECT_FALSE(sim_scan_from(scan, model("URM-40LC"), kFeedStart, &out, &error));
   EXPECT_NE(error.find("541 beams"), std::string::npos) << error;
-  scan = urm_scan(kT0);
+  scan = urm_scan(kFeedStart);
   scan.angle_increment *= 2;
-  EXPECT_FALSE(sim_scan_from(scan, model("URM-40LC"), kT0, &out, &error));
+  EXPECT_FALSE(sim_scan_from(scan, model("URM-40LC"), kFeedStart, &out, &error));
   EXPECT_NE(error.find("angle increment"), std::string::npos) << error;
-  scan = urm_scan(kT0);
+  scan = urm_scan(kFeedStart);
   scan.angle_min = -std::numbers::pi;
-  EXPECT_FALSE(sim_scan_from(scan, model("URM-40LC"), kT0, &out, &error));
+  EXPECT_FALSE(sim_scan_from(scan, model("URM-40LC"), kFeedStart, &out, &error));
   EXPECT_NE(error.find("angle_min"), std::string::npos) << error;
-  scan = urm_scan(kT0);
+  scan = urm_scan(kFeedStart);
   scan.scan_period = 0.1f;
-  EXPECT_FALSE(sim_scan_from(scan, model("URM-40LC"), kT0, &out, &error));
+  EXPECT_FALSE(sim_scan_from(scan, model("URM-40LC"), kFeedStart, &out, &error));
   EXPECT_NE(error.find("scan period"), std::string::npos) << error;
-  EXPECT_FALSE(sim_scan_from(urm_scan(kT0), model("URG-04LX"), kT0, &out, &error));  // 682 beams
+  EXPECT_FALSE(sim_scan_from(urm_scan(kFeedStart), model("URG-04LX"), kFeedStart, &out, &error));  // 682 beams
 }
 
 // Frames the sensor's output and returns the scan replies (status 99).
@@ -124,24 +124,24 @@ TEST(SimSensorFeed, AFedScanIsSentAfterItsLastBeamStampedAtItsFirst) {
   knobs.offset_ms = 1000.0;
   knobs.drift_ppm = 100.0;
   SimSensor sensor(model("URM-40LC"), knobs);
-  sensor.power_on(kT0);
+  sensor.power_on(kFeedStart);
   SimScan early;
-  ASSERT_TRUE(sim_scan_from(urm_scan(kT0 + 5000), sensor.model(), kT0 + 6000, &early, nullptr));
+  ASSERT_TRUE(sim_scan_from(urm_scan(kFeedStart + 5000), sensor.model(), kFeedStart + 6000, &early, nullptr));
   sensor.feed(early);  // not streaming yet: dropped
-  sensor.receive("MD0000108001000\n", kT0 + 10000);
-  EXPECT_EQ(sensor.poll(kT0 + 10000).substr(0, 21), "MD0000108001000\n00P\n\n");
+  sensor.receive("MD0000108001000\n", kFeedStart + 10000);
+  EXPECT_EQ(sensor.poll(kFeedStart + 10000).substr(0, 21), "MD0000108001000\n00P\n\n");
   // A scan that began before the command: a real sensor only sends rotations measured after it.
   SimScan before;
-  ASSERT_TRUE(sim_scan_from(urm_scan(kT0 + 9000), sensor.model(), kT0 + 26000, &before, nullptr));
+  ASSERT_TRUE(sim_scan_from(urm_scan(kFeedStart + 9000), sensor.model(), kFeedStart + 26000, &before, nullptr));
   sensor.feed(before);
-  LaserScan source = urm_scan(kT0 + 30000);
+  LaserScan source = urm_scan(kFeedStart + 30000);
   source.ranges[100] = 2.5f;
   SimScan fed;
-  ASSERT_TRUE(sim_scan_from(source, sensor.model(), kT0 + 45000, &fed, nullptr));
+  ASSERT_TRUE(sim_scan_from(source, sensor.model(), kFeedStart + 45000, &fed, nullptr));
   sensor.feed(fed);
-  EXPECT_TRUE(scans_in(sensor.poll(kT0 + 28000)).empty());  // the one from before the command is gone
+  EXPECT_TRUE(scans_in(sensor.poll(kFeedStart + 28000)).empty());  // the one from before the command is gone
   // The 1081 steps take 1081 / 1440 of 25 ms: the reply is ready 18767 us after the first beam.
-  const int64_t ready = kT0 + 30000 + 18767;
+  const int64_t ready = kFeedStart + 30000 + 18767;
   EXPECT_EQ(sensor.next_event_us(), ready);
   EXPECT_TRUE(scans_in(sensor.poll(ready - 1)).empty());
   const std::vector<ScanData> sent = scans_in(sensor.poll(ready));
@@ -153,7 +153,7 @@ TEST(SimSensorFeed, AFedScanIsSentAfterItsLastBeamStampedAtItsFirst) {
   EXPECT_EQ(sent[0].distances[0], 1000u);
   const std::vector<SimTruth> truth = sensor.take_truth();
   ASSERT_EQ(truth.size(), 1u);
-  EXPECT_EQ(truth[0].first_beam_host_us, kT0 + 30000);
+  EXPECT_EQ(truth[0].first_beam_host_us, kFeedStart + 30000);
   EXPECT_EQ(sensor.next_event_us(), INT64_MAX);  // no scene scans in between
 }
 
@@ -161,17 +161,17 @@ TEST(SimSensorFeed, AScanArrivingLateIsSentWhenItArrivesWithIntensitiesForMe) {
   SimKnobs knobs;
   knobs.external_scans = true;
   SimSensor sensor(model("URM-40LC"), knobs);
-  sensor.power_on(kT0);
-  sensor.receive("ME0000108001000\n", kT0);
-  sensor.poll(kT0);
-  LaserScan source = urm_scan(kT0 + 25000);
+  sensor.power_on(kFeedStart);
+  sensor.receive("ME0000108001000\n", kFeedStart);
+  sensor.poll(kFeedStart);
+  LaserScan source = urm_scan(kFeedStart + 25000);
   source.intensities.assign(1081, 0.0f);
   source.intensities[7] = 1234.0f;
   SimScan fed;
-  ASSERT_TRUE(sim_scan_from(source, sensor.model(), kT0 + 60000, &fed, nullptr));
+  ASSERT_TRUE(sim_scan_from(source, sensor.model(), kFeedStart + 60000, &fed, nullptr));
   sensor.feed(fed);
-  EXPECT_EQ(sensor.next_event_us(), kT0 + 60000);  // ready at 43767 us, but it only arrived at 60000
-  const std::vector<ScanData> sent = scans_in(sensor.poll(kT0 + 60000));
+  EXPECT_EQ(sensor.next_event_us(), kFeedStart + 60000);  // ready at 43767 us, but it only arrived at 60000
+  const std::vector<ScanData> sent = scans_in(sensor.poll(kFeedStart + 60000));
   ASSERT_EQ(sent.size(), 1u);
   ASSERT_EQ(sent[0].intensities.size(), 1081u);
   EXPECT_EQ(sent[0].intensities[7], 1234u);

@@ -7,18 +7,19 @@
 #include <cmath>
 
 #include "drivers/wheels/ypspur_params.hpp"
+#include "test/wheels/icart_mini_params.hpp"
 #include "tools/tfrog_sim/tfrog_board.hpp"
 #include "tools/tfrog_sim/wheel_path.hpp"
 
 namespace slamer::tfrog {
 namespace {
 
-Kinematics icart() {
-  return kinematics_from(RobotParams::from_file(std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart-mini.param"));
+Kinematics icart_from_file() {
+  return kinematics_from(RobotParams::from_file(icart_mini_param_file()));
 }
 
 TEST(EncoderFollower, MotorsEndOnTheSourceCountsWithTheRadiusSigns) {
-  EncoderFollower follower(icart());
+  EncoderFollower follower(icart_from_file());
   TfrogBoard board;
   follower.add(1'000'000, 500, 700);  // the first sample is the reference
   follower.add(1'010'000, 500 + 123, 700 + 457);
@@ -50,7 +51,7 @@ TEST(EncoderFollower, MotorsEndOnTheSourceCountsWithTheRadiusSigns) {
 }
 
 TEST(EncoderFollower, RampsLastTheSampleIntervalWithinOneToOneHundredTicks) {
-  EncoderFollower follower(icart());
+  EncoderFollower follower(icart_from_file());
   follower.add(0, 0, 0);
   follower.add(500'000, 0, 1000);  // 0.5 s gap: ramp capped at 100 ticks
   double total = 0;

@@ -4,11 +4,10 @@
 #include <cmath>
 
 #include "drivers/wheels/ypspur_params.hpp"
+#include "test/wheels/icart_mini_params.hpp"
 
 namespace slamer::tfrog {
 namespace {
-
-const std::string kParamFile = std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart-mini.param";
 
 int32_t find(const std::vector<std::vector<Command>>& groups, Param param, int motor, int* count = nullptr) {
   int32_t value = 0;
@@ -29,7 +28,7 @@ int32_t find(const std::vector<std::vector<Command>>& groups, Param param, int m
 }
 
 TEST(YpspurParams, ReadsTheShippedIcartMiniFile) {
-  const RobotParams params = RobotParams::from_file(kParamFile);
+  const RobotParams params = RobotParams::from_file(icart_mini_param_file());
   EXPECT_DOUBLE_EQ(params.get("COUNT_REV", 1, 0), 400);
   EXPECT_DOUBLE_EQ(params.get("RADIUS", 0, 0), 0.07455);
   EXPECT_DOUBLE_EQ(params.get("RADIUS", 1, 0), -0.07455);
@@ -69,7 +68,7 @@ TEST(YpspurParams, MalformedFilesGiveOneLineErrors) {
 }
 
 TEST(YpspurParams, ConnectParametersAreYpSpursFormulas) {
-  const RobotParams params = RobotParams::from_file(kParamFile);
+  const RobotParams params = RobotParams::from_file(icart_mini_param_file());
   const auto groups = connect_parameters(params, 1000, 11, 300);
   // Order: watchdog 1200 first, 300 last.
   ASSERT_GE(groups.size(), 6u);

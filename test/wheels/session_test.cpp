@@ -4,17 +4,17 @@
 #include <cmath>
 
 #include "drivers/wheels/tfrog_session.hpp"
+#include "test/wheels/icart_mini_params.hpp"
 #include "tools/tfrog_sim/tfrog_board.hpp"
 
 namespace slamer::tfrog {
 namespace {
 
-const std::string kParamFile = std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart-mini.param";
 constexpr int64_t kStart = 1'700'000'000'000'000;
 
 struct Rig {
   explicit Rig(SessionOptions options = {}, BoardOptions board_options = {})
-      : session(options, RobotParams::from_file(kParamFile)), board(board_options) {
+      : session(options, RobotParams::from_file(icart_mini_param_file())), board(board_options) {
     session.opened(now);
   }
   // Runs `ms` milliseconds; `connected` false models a dead link (nothing delivered).
