@@ -141,6 +141,8 @@ void read_options(const ConfigReader& reader, LocalMatchOptions* o) {
 void read_options(const ConfigReader& reader, RecoveryOptions* o) {
   reader.read("candidates", &o->candidates, in_range(0, 1'000'000));
   reader.read("fraction", &o->fraction, probability());
+  reader.read("adopt_time", &o->adopt_time, in_range(0.0, 60.0));
+  reader.read("adopt_margin", &o->adopt_margin, probability());
   read_options(reader.section("local"), &o->local);
 }
 

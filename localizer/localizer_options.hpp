@@ -145,9 +145,17 @@ struct LocalMatchOptions {
 };
 
 // Relocalization while LOST or globally localizing, and local scan matching while tracking.
+// Globally localizing, the best proposals replace `fraction` of the particles
+// each scan. While LOST they form a cloud of their own of that size
+// (particle_filter_challengers.cpp), and the tracked cloud moves to its place
+// only once that place has fitted the scans at least status.fit_confirm and
+// `adopt_margin` better than the tracked cloud for `adopt_time` (0: the
+// proposals join the tracked cloud at once, as globally localizing).
 struct RecoveryOptions {
-  int candidates = 2000;  // poses scored against each scan
-  double fraction = 0.1;  // of the particles replaced by the best of them each scan
+  int candidates = 2000;      // poses scored against each scan
+  double fraction = 0.1;      // of the particles
+  double adopt_time = 2.0;    // [s]
+  double adopt_margin = 0.1;  // scan fit
   LocalMatchOptions local;
   bool operator==(const RecoveryOptions&) const = default;
 };

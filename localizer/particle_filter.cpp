@@ -6,33 +6,16 @@
 #include <stdexcept>
 
 #include "localizer/motion_model.hpp"
+#include "localizer/particle_filter_internal.hpp"
 #include "localizer/recognition_model.hpp"
 
 namespace slamer {
-
-struct ParticleFilter::PreparedScan {
-  ScanPoints points;       // used beams' end points in the sensor frame, in cells
-  std::vector<int> field;  // SLFM: class field per beam, -1 = unknown class (pose-independent)
-};
-
-struct ParticleFilter::PreparedObjects {
-  struct Object {
-    LineObject object;
-    std::vector<Eigen::Vector2d> samples;  // sensor frame [m]
-    std::vector<double> log_recognition;   // per recognition class: log Dir(c-hat; a(l))
-    std::vector<int> field;                // per recognition class: map class, -1 free space, -2 none
-  };
-  std::vector<Object> objects;
-  std::vector<std::string> class_names;
-};
 
 namespace {
 
 constexpr int kFreeSpace = -1;
 constexpr int kNoField = -2;
-constexpr double kClearance = 0.15;    // [m] global proposals keep the robot's centre this far from obstacles
-constexpr double kFitSmoothing = 0.1;  // per scan: about 10 scans (0.25 s at 40 Hz)
-constexpr int kProposalBeams = 48;     // beams a global proposal is scored with
+constexpr double kClearance = 0.15;  // [m] global proposals keep the robot's centre this far from obstacles
 
 // How far the map's distance fields must reach: the LFM's likelihood field
 // and SLAMER's prior, which treats everything beyond 3 sigma_d as equally far.
@@ -108,6 +91,7 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   searching_ = false;
   confirm_scans_seen_ = -1;
   noise_gain_ = 1.0;
+  end_challenge();
   increment_.reset();
   last_heading_.reset();  // the learned correction stays: it belongs to the robot, not the pose
 }
@@ -124,6 +108,12 @@ void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
   for (Particle& p : particles_) {
     p.pose = sample_motion(p.pose, u, options_.motion, rng_, noise_gain_);
   }
+  for (Particle& c : challengers_) {
+    c.pose = sample_motion(c.pose, u, options_.motion, rng_, noise_gain_);
+  }
+  if (challenger_track_) {
+    challenger_track_ = compose(*challenger_track_, between(odom_from, odom_to));
+  }
 }
 
 void ParticleFilter::diffuse(double seconds) {
@@ -135,9 +125,11 @@ void ParticleFilter::diffuse(double seconds) {
   increment_.reset();
   const double position = options_.motion.no_odometry_speed * seconds;
   const double heading = options_.motion.no_odometry_turn_rate * seconds;
-  for (Particle& p : particles_) {
-    p.pose = {p.pose.x + position * standard(rng_), p.pose.y + position * standard(rng_),
-              wrap_angle(p.pose.theta + heading * standard(rng_))};
+  for (std::vector<Particle>* set : {&particles_, &challengers_}) {
+    for (Particle& p : *set) {
+      p.pose = {p.pose.x + position * standard(rng_), p.pose.y + position * standard(rng_),
+                wrap_angle(p.pose.theta + heading * standard(rng_))};
+    }
   }
 }
 
@@ -337,7 +329,9 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   const PreparedScan beams = prepare(scan, objects);
   const PreparedObjects prepared_objects = objects != nullptr ? prepare_objects(*objects) : PreparedObjects{};
   const bool use_objects = options_.mode == LocalizerMode::kSlamer;
-  if (lost_ || global_ || searching_) {
+  // While LOST with a cloud to keep, the proposals compete beside it
+  // (compete(), after this scan's fit); globally localizing, they join it.
+  if (global_ || ((lost_ || searching_) && !(options_.recovery.adopt_time > 0.0))) {
     inject(beams.points, &result);
   }
   match_locally(beams.points, turn_during_sweep(scan), &result);
@@ -351,19 +345,9 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
                                     : 0.0);
     particles_[i].log_weight += log_likelihood[i];
   }
-  // Normalize in log space.
-  double peak = -std::numeric_limits<double>::infinity();
-  for (const Particle& p : particles_) {
-    peak = std::max(peak, p.log_weight);
-  }
-  double sum = 0.0;
-  for (const Particle& p : particles_) {
-    sum += std::exp(p.log_weight - peak);
-  }
-  const double log_sum = peak + std::log(sum);
+  normalize(&particles_);
   double mean_beam = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    particles_[i].log_weight -= log_sum;
     mean_beam += std::exp(particles_[i].log_weight) * beam_part[i];
   }
   const std::size_t used_beams = beams.points.x.size();
@@ -403,10 +387,15 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   if (used_beams > 0) {
     update_fit(result.fit, result.estimate, scan.utime);
   }
+  if (!global_ && (lost_ || searching_) && options_.recovery.adopt_time > 0.0) {
+    compete(beams, prepared_objects, scan.utime, &result);
+  } else {
+    end_challenge();
+  }
   result.estimate.status = status(result.estimate);
   result.noise_gain = noise_gain_;
   // Learn the odometry's heading error only from scans the filter is sure of.
-  if (increment_ && last_heading_ && result.injected == 0 && result.matched == 0 &&
+  if (increment_ && last_heading_ && result.injected == 0 && result.matched == 0 && !result.adopted &&
       result.estimate.status == LocalizerStatus::kOk && result.fit >= options_.status.fit_uncertain) {
     correction_.observe(*increment_, angle_diff(result.estimate.pose.theta, *last_heading_));
   }
@@ -455,25 +444,48 @@ PoseEstimate ParticleFilter::estimate() const {
   return e;
 }
 
+void ParticleFilter::normalize(std::vector<Particle>* set) {
+  // In log space: the weights of a scan's worst particles underflow in linear space.
+  double peak = -std::numeric_limits<double>::infinity();
+  for (const Particle& p : *set) {
+    peak = std::max(peak, p.log_weight);
+  }
+  double sum = 0.0;
+  for (const Particle& p : *set) {
+    sum += std::exp(p.log_weight - peak);
+  }
+  const double log_sum = peak + std::log(sum);
+  for (Particle& p : *set) {
+    p.log_weight -= log_sum;
+  }
+}
+
 void ParticleFilter::resample() {
-  // Systematic (low-variance) resampling: one random offset, N evenly spaced pointers.
-  const std::size_t n = particles_.size();
+  particles_ = resampled(particles_, particles_.size());
+}
+
+std::vector<Particle> ParticleFilter::resampled(const std::vector<Particle>& set, std::size_t n) {
+  // Systematic (low-variance) resampling: one random offset, n evenly spaced
+  // pointers into the normalized weights of `set`.
+  std::vector<Particle> next;
+  if (set.empty() || n == 0) {
+    return next;
+  }
   std::uniform_real_distribution<double> offset(0.0, 1.0 / static_cast<double>(n));
   double pointer = offset(rng_);
-  double cumulative = std::exp(particles_[0].log_weight);
+  double cumulative = std::exp(set[0].log_weight);
   std::size_t source = 0;
-  std::vector<Particle> next;
   next.reserve(n);
   const double log_uniform = -std::log(static_cast<double>(n));
   for (std::size_t i = 0; i < n; ++i) {
-    while (pointer > cumulative && source + 1 < n) {
+    while (pointer > cumulative && source + 1 < set.size()) {
       ++source;
-      cumulative += std::exp(particles_[source].log_weight);
+      cumulative += std::exp(set[source].log_weight);
     }
-    next.push_back({particles_[source].pose, log_uniform});
+    next.push_back({set[source].pose, log_uniform});
     pointer += 1.0 / static_cast<double>(n);
   }
-  particles_ = std::move(next);
+  return next;
 }
 
 }  // namespace slamer

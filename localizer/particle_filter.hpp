@@ -16,10 +16,14 @@
 // sure and taken out of the increments (odometry_correction.hpp);
 // while the prediction fits the scan poorly, a local scan match
 // (local_match.hpp) puts some particles where the scan fits best nearby;
-// while LOST, or after request for global localization, each scan proposes
-// poses from the whole map (global_proposals.hpp) that replace the least
-// likely particles, so the filter relocalizes by itself; it says OK again only
-// once the scans fit as well as at a correct pose (status.fit_confirm).
+// after a request for global localization, each scan proposes poses from the
+// whole map (global_proposals.hpp) that replace the least likely particles;
+// while LOST, the proposals compete in a cloud of their own and the tracked
+// cloud moves to their place only once it has fitted the scans clearly better
+// for recovery.adopt_time (a kidnapping prior), so the filter relocalizes by
+// itself without jumping to a look-alike place a single scan favours; it says
+// OK again only once the scans fit as well as at a correct pose
+// (status.fit_confirm).
 #pragma once
 
 #include <memory>
@@ -62,6 +66,7 @@ struct UpdateResult {
   double heading_per_metre = 0.0;    // [rad/m] learned odometry heading error (OdometryCorrection)
   int injected = 0;                  // particles replaced by global proposals before weighting
   int matched = 0;                   // particles replaced around a local scan match before weighting
+  bool adopted = false;              // LOST: the cloud moved to the place the challengers held (compete())
   bool resampled = false;
 };
 
@@ -117,14 +122,24 @@ class ParticleFilter {
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects, const DistanceField& free_space,
                                 double unmapped_probability, std::vector<std::vector<double>>* class_terms) const;
   void resample();
+  // `set`'s log weights normalized to sum to one (in linear space).
+  static void normalize(std::vector<Particle>* set);
+  // `n` draws from `set` (normalized) by systematic resampling, weights uniform.
+  std::vector<Particle> resampled(const std::vector<Particle>& set, std::size_t n);
   void inject(const ScanPoints& points, UpdateResult* result);
+  // While LOST with a tracked cloud (particle_filter_challengers.cpp): global
+  // proposals in a cloud of their own, adopted only once one place has fitted
+  // better than the tracked cloud for recovery.adopt_time.
+  void compete(const PreparedScan& beams, const PreparedObjects& objects, int64_t utime, UpdateResult* result);
+  void end_challenge();
   // `sweep_turn`: how far the robot turned while the scan was taken [rad].
   void match_locally(const ScanPoints& points, double sweep_turn, UpdateResult* result);
   // From the odometry since the last scan and the scan's beam timing; 0 when either is unknown.
   double turn_during_sweep(const LaserScan& scan) const;
   // Puts `poses` in place of the least likely particles, with the weight of the
   // most likely one: the scan's full measurement model then decides.
-  void replace_least_likely(const std::vector<Pose2>& poses);
+  void replace_least_likely(const std::vector<Pose2>& poses) { replace_least_likely(&particles_, poses); }
+  static void replace_least_likely(std::vector<Particle>* set, const std::vector<Pose2>& poses);
   void update_fit(double fit, const PoseEstimate& e, int64_t utime);
   LocalizerStatus status(const PoseEstimate& e) const;
 
@@ -159,6 +174,15 @@ class ParticleFilter {
   int confirm_scans_seen_ = -1;
   int confirmed_in_row_ = 0;
   double noise_gain_ = 1.0;
+  // The challengers (compete()): their cloud, where their most likely particle
+  // was at the last scan (moved since by the odometry), the scan fit there
+  // smoothed while it stays the same place, and for how long it has fitted
+  // clearly better than the tracked cloud.
+  std::vector<Particle> challengers_;
+  std::optional<Pose2> challenger_track_;
+  double challenger_fit_ = 0.0;
+  double challenger_held_ = 0.0;  // [s]
+  std::optional<int64_t> challenger_utime_;
   OdometryCorrection correction_;
   std::optional<OdometryIncrement> increment_;  // odometry since the last update (raw), for the correction
   std::optional<double> last_heading_;          // the estimate's heading at the last update

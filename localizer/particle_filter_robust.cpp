@@ -5,13 +5,13 @@
 #include <cmath>
 #include <numeric>
 
-#include "localizer/particle_filter.hpp"
+#include "localizer/particle_filter_internal.hpp"
 
 namespace slamer {
 
 namespace {
-constexpr double kFitSmoothing = 0.1;  // per scan: about 10 scans (0.25 s at 40 Hz)
-constexpr int kProposalBeams = 48;     // beams a global proposal is scored with
+using filter_constants::kFitSmoothing;
+using filter_constants::kProposalBeams;
 // Local scan match: the coarse grid (about half the LFM's sigma_hit, and 0.25 m
 // at 10 m range), the beams it scores with and those its fits are counted over.
 constexpr double kMatchShiftStep = 0.1;   // [m]
@@ -194,16 +194,21 @@ void ParticleFilter::match_locally(const ScanPoints& points, double sweep_turn, 
   result->matched = count;
 }
 
-void ParticleFilter::replace_least_likely(const std::vector<Pose2>& poses) {
-  std::vector<std::size_t> order(particles_.size());
+void ParticleFilter::replace_least_likely(std::vector<Particle>* set, const std::vector<Pose2>& poses) {
+  std::vector<Particle>& particles = *set;
+  const std::size_t n = std::min(poses.size(), particles.size());
+  if (n == 0) {
+    return;
+  }
+  std::vector<std::size_t> order(particles.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(poses.size()), order.end(),
-                    [&](std::size_t a, std::size_t b) { return particles_[a].log_weight < particles_[b].log_weight; });
-  const double best = std::max_element(particles_.begin(), particles_.end(), [](const Particle& a, const Particle& b) {
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n), order.end(),
+                    [&](std::size_t a, std::size_t b) { return particles[a].log_weight < particles[b].log_weight; });
+  const double best = std::max_element(particles.begin(), particles.end(), [](const Particle& a, const Particle& b) {
                         return a.log_weight < b.log_weight;
                       })->log_weight;
-  for (std::size_t k = 0; k < poses.size(); ++k) {
-    particles_[order[k]] = {poses[k], best};
+  for (std::size_t k = 0; k < n; ++k) {
+    particles[order[k]] = {poses[k], best};
   }
 }
 

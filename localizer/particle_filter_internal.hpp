@@ -1,0 +1,34 @@
+// What the ParticleFilter's source files share and nothing else sees: a
+// scan and its objects prepared once per update for every particle's
+// likelihood, and the constants of the scan-fit status and the proposals.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "localizer/particle_filter.hpp"
+
+namespace slamer {
+
+struct ParticleFilter::PreparedScan {
+  ScanPoints points;       // used beams' end points in the sensor frame, in cells
+  std::vector<int> field;  // SLFM: class field per beam, -1 = unknown class (pose-independent)
+};
+
+struct ParticleFilter::PreparedObjects {
+  struct Object {
+    LineObject object;
+    std::vector<Eigen::Vector2d> samples;  // sensor frame [m]
+    std::vector<double> log_recognition;   // per recognition class: log Dir(c-hat; a(l))
+    std::vector<int> field;                // per recognition class: map class, -1 free space, -2 none
+  };
+  std::vector<Object> objects;
+  std::vector<std::string> class_names;
+};
+
+namespace filter_constants {
+inline constexpr double kFitSmoothing = 0.1;  // per scan: about 10 scans (0.25 s at 40 Hz)
+inline constexpr int kProposalBeams = 48;     // beams a global proposal is scored with
+}  // namespace filter_constants
+
+}  // namespace slamer
