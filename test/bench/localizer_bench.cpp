@@ -159,6 +159,30 @@ void BM_SlamerRecovering(benchmark::State& state) {
 }
 BENCHMARK(BM_SlamerRecovering)->Unit(benchmark::kMillisecond);
 
+// One scan of a LOST SLAMER filter with a cloud to keep (500 particles x 1081
+// beams): 2000 global proposals scored, 10 of them joining the 50 challengers,
+// which are weighted beside the 500 (particle_filter_challengers.cpp). The
+// scans' time stands still, so the challengers never take the cloud.
+void BM_SlamerLostCompeting(benchmark::State& state) {
+  const Fixture& f = fixture();
+  LocalizerOptions options;
+  ParticleFilter filter(f.map, options, f.robot.lidar.mount);
+  const Pose2 pose{20.0, 8.25, 0.0};
+  const LaserScan scan = f.scan(1081, pose);
+  const LineObjectSet objects = LineRecognizer{RecognizerOptions{}}.recognize(scan);
+  filter.initialize({5.0, 5.0, 1.0}, {0.02, 0.02, 0.01});  // confidently somewhere else
+  for (int k = 0; k < options.status.lost_after + 1; ++k) {
+    filter.update(scan, &objects);
+  }
+  int competing = 0;
+  for (auto _ : state) {
+    const UpdateResult r = filter.update(scan, &objects);
+    competing += r.estimate.status == LocalizerStatus::kLost && r.injected > 0;
+  }
+  state.counters["competing_fraction"] = benchmark::Counter(competing, benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_SlamerLostCompeting)->Unit(benchmark::kMillisecond);
+
 void BM_SlfmParticles(benchmark::State& state) {
   run(state, static_cast<int>(state.range(0)), 1081, LocalizerMode::kSlfm);
 }
