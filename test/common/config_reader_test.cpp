@@ -9,7 +9,7 @@
 namespace slamer {
 namespace {
 
-struct LidarOptions {
+struct TestLidarOptions {
   double range_max = 30.0;
   int beams = 1081;
   bool flip = false;
@@ -26,7 +26,7 @@ struct TestOptions {
   std::string mode = "slamer";
   double alpha = 0.5;
   int64_t seed = 1;
-  LidarOptions lidar;
+  TestLidarOptions lidar;
   std::vector<ClassEntry> classes;
 };
 

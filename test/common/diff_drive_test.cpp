@@ -8,12 +8,10 @@
 namespace slamer {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 TEST(DiffDrive, TicksToTravelUsesGearAndCounts) {
   const DiffDriveOptions base;  // i-Cart mini: 400 counts x 75 gear, r = 0.07455 m
   EXPECT_DOUBLE_EQ(base.ticks_per_wheel_rev(), 30000.0);
-  EXPECT_NEAR(wheel_travel(30000.0, base.wheel_radius_left, base), 2.0 * kPi * 0.07455, 1e-12);
+  EXPECT_NEAR(wheel_travel(30000.0, base.wheel_radius_left, base), 2.0 * std::numbers::pi * 0.07455, 1e-12);
   EXPECT_NEAR(travel_ticks(wheel_travel(1234.0, 0.07, base), 0.07, base), 1234.0, 1e-9);
 }
 
@@ -27,12 +25,12 @@ TEST(DiffDriveOdometry, StraightLineAndTurnOnTheSpot) {
   EXPECT_NEAR(odometry.pose().y, 0.0, 1e-12);
   EXPECT_NEAR(odometry.speed(), 1.0, 1e-4);
   // Quarter turn on the spot: each wheel travels tread * pi / 4.
-  const auto turn =
-      static_cast<int64_t>(std::llround(travel_ticks(base.tread * kPi / 4.0, base.wheel_radius_left, base)));
+  const auto turn = static_cast<int64_t>(
+      std::llround(travel_ticks(base.tread * std::numbers::pi / 4.0, base.wheel_radius_left, base)));
   EXPECT_TRUE(odometry.update(2'000'000, ticks - turn, ticks + turn));
-  EXPECT_NEAR(odometry.pose().theta, kPi / 2.0, 1e-4);
+  EXPECT_NEAR(odometry.pose().theta, std::numbers::pi / 2.0, 1e-4);
   EXPECT_NEAR(odometry.pose().x, 1.0, 1e-4);
-  EXPECT_NEAR(odometry.yaw_rate(), kPi / 2.0, 1e-4);
+  EXPECT_NEAR(odometry.yaw_rate(), std::numbers::pi / 2.0, 1e-4);
 }
 
 TEST(DiffDriveOdometry, ArcIsIntegratedExactly) {
@@ -43,13 +41,13 @@ TEST(DiffDriveOdometry, ArcIsIntegratedExactly) {
   DiffDriveOdometry odometry(base);
   odometry.update(0, 0, 0);
   const double radius = 2.0;
-  const double left = (radius - base.tread / 2) * kPi / 2;
-  const double right = (radius + base.tread / 2) * kPi / 2;
+  const double left = (radius - base.tread / 2) * std::numbers::pi / 2;
+  const double right = (radius + base.tread / 2) * std::numbers::pi / 2;
   odometry.update(1'000'000, std::llround(travel_ticks(left, base.wheel_radius_left, base)),
                   std::llround(travel_ticks(right, base.wheel_radius_right, base)));
   EXPECT_NEAR(odometry.pose().x, radius, 1e-5);
   EXPECT_NEAR(odometry.pose().y, radius, 1e-5);
-  EXPECT_NEAR(odometry.pose().theta, kPi / 2, 1e-6);
+  EXPECT_NEAR(odometry.pose().theta, std::numbers::pi / 2, 1e-6);
 }
 
 TEST(DiffDriveOdometry, TimeGoingBackwardsIsIgnored) {

@@ -16,7 +16,7 @@ namespace slamer {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kSource = SLAMER_SOURCE_DIR;
+const std::string kSourceDir = SLAMER_SOURCE_DIR;
 using test::Listener;
 
 // The localizer's first status at or after `from` in `state` whose message has `text`; -1 if none.
@@ -34,7 +34,7 @@ TEST(SlamerLaunch, Kill9OfADriverIsAGapTheLocalizerReportsAsDegradedAndRidesOut)
   const std::string dir = test::temp_dir();
   const std::string url = test::unique_lcm_url(73);
   const std::string port = std::to_string(test::free_tcp_port());
-  const std::string config = kSource + "/config/";
+  const std::string config = kSourceDir + "/config/";
   // The shipped input timeouts; statuses at 5 Hz only to keep the test short.
   std::ofstream(dir + "/localizer.yaml") << "map: " << config << "maps/small_room/map.yaml\nrobot: " << config
                                          << "robots/icart_mini.yaml\nparticles_out: 0\nprocess: {status_period: 0.2}\n"
