@@ -37,6 +37,7 @@ constexpr int kFreshShare = 5;  // 1/5 of the challengers replaced each scan: th
 // place's distance (a room or a corridor bay away).
 constexpr double kSamePlaceShift = 0.5;  // [m]
 constexpr double kSamePlaceTurn = 0.3;   // [rad]
+constexpr double kMaxScanGap = 0.5;      // [s] a 2 Hz scanner's period
 }  // namespace
 
 void ParticleFilter::end_challenge() {
@@ -105,8 +106,10 @@ void ParticleFilter::compete(const PreparedScan& beams, const PreparedObjects& o
   const Pose2 place = same_place ? best_near->pose : best->pose;
   const double fit =
       scan_fit(*obstacles_, beams.points, sensor_in_cells(geometry_, place, mount_), options_.status.fit_distance);
-  const double dt =
-      challenger_utime_ && utime > *challenger_utime_ ? static_cast<double>(utime - *challenger_utime_) * 1e-6 : 0.0;
+  // At most kMaxScanGap a scan: one scan after a gap in the log is one scan of evidence, not seconds.
+  const double dt = challenger_utime_ && utime > *challenger_utime_
+                        ? std::min(static_cast<double>(utime - *challenger_utime_) * 1e-6, kMaxScanGap)
+                        : 0.0;
   challenger_utime_ = utime;
   challenger_track_ = place;
   challenger_fit_ = same_place ? challenger_fit_ + kFitSmoothing * (fit - challenger_fit_) : fit;
