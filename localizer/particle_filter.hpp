@@ -174,10 +174,10 @@ class ParticleFilter {
   int confirm_scans_seen_ = -1;
   int confirmed_in_row_ = 0;
   double noise_gain_ = 1.0;
-  // The challengers (compete()): their cloud, where their most likely particle
-  // was at the last scan (moved since by the odometry), the scan fit there
-  // smoothed while it stays the same place, and for how long it has fitted
-  // clearly better than the tracked cloud.
+  // The challengers (compete()): their cloud, their place at the last scan
+  // (their most likely particle near the place before, moved since by the
+  // odometry), the scan fit there smoothed while it stays the same place, and
+  // for how long it has fitted clearly better than the tracked cloud.
   std::vector<Particle> challengers_;
   std::optional<Pose2> challenger_track_;
   double challenger_fit_ = 0.0;
