@@ -137,13 +137,19 @@ BENCHMARK(BM_LocalMatch)->Unit(benchmark::kMillisecond);
 
 // One scan of a lost (or globally localizing) SLAMER filter, 500 particles x 1081 beams:
 // 2000 global proposals scored and 50 injected before the usual update.
-void BM_SlamerRecovering(benchmark::State& state) {
-  const Fixture& f = fixture();
+// A SLAMER filter with the shipped defaults and the scan (and its objects) of one place of the map.
+struct SlamerAtOnePlace {
   LocalizerOptions options;
-  ParticleFilter filter(f.map, options, f.robot.lidar.mount);
-  const Pose2 pose{20.0, 8.25, 0.0};
-  const LaserScan scan = f.scan(1081, pose);
-  const LineObjectSet objects = LineRecognizer{RecognizerOptions{}}.recognize(scan);
+  ParticleFilter filter{fixture().map, options, fixture().robot.lidar.mount};
+  LaserScan scan = fixture().scan(1081, {20.0, 8.25, 0.0});
+  LineObjectSet objects = LineRecognizer{RecognizerOptions{}}.recognize(scan);
+};
+
+void BM_SlamerRecovering(benchmark::State& state) {
+  SlamerAtOnePlace one;
+  ParticleFilter& filter = one.filter;
+  const LaserScan& scan = one.scan;
+  const LineObjectSet& objects = one.objects;
   filter.initialize_global();
   int injected = 0;
   for (auto _ : state) {
@@ -164,14 +170,12 @@ BENCHMARK(BM_SlamerRecovering)->Unit(benchmark::kMillisecond);
 // which are weighted beside the 500 (particle_filter_challengers.cpp). The
 // scans' time stands still, so the challengers never take the cloud.
 void BM_SlamerLostCompeting(benchmark::State& state) {
-  const Fixture& f = fixture();
-  LocalizerOptions options;
-  ParticleFilter filter(f.map, options, f.robot.lidar.mount);
-  const Pose2 pose{20.0, 8.25, 0.0};
-  const LaserScan scan = f.scan(1081, pose);
-  const LineObjectSet objects = LineRecognizer{RecognizerOptions{}}.recognize(scan);
+  SlamerAtOnePlace one;
+  ParticleFilter& filter = one.filter;
+  const LaserScan& scan = one.scan;
+  const LineObjectSet& objects = one.objects;
   filter.initialize({5.0, 5.0, 1.0}, {0.02, 0.02, 0.01});  // confidently somewhere else
-  for (int k = 0; k < options.status.lost_after + 1; ++k) {
+  for (int k = 0; k < one.options.status.lost_after + 1; ++k) {
     filter.update(scan, &objects);
   }
   int competing = 0;
