@@ -308,6 +308,12 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   return total;
 }
 
+double ParticleFilter::objects_weight(const Pose2& pose, const PreparedObjects& objects) const {
+  return options_.mode == LocalizerMode::kSlamer
+             ? objects_log_likelihood(pose, objects, *free_distance_, options_.slamer.unmapped_probability, nullptr)
+             : 0.0;
+}
+
 double ParticleFilter::object_log_likelihood(const Pose2& pose, const LineObject& object,
                                              const std::vector<std::string>& classes) const {
   LineObjectSet set;
@@ -328,7 +334,6 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   }
   const PreparedScan beams = prepare(scan, objects);
   const PreparedObjects prepared_objects = objects != nullptr ? prepare_objects(*objects) : PreparedObjects{};
-  const bool use_objects = options_.mode == LocalizerMode::kSlamer;
   // While LOST with a cloud to keep, the proposals compete beside it
   // (compete(), after this scan's fit); globally localizing, they join it.
   if (global_ || ((lost_ || searching_) && !(options_.recovery.adopt_time > 0.0))) {
@@ -339,10 +344,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   std::vector<double> beam_part(particles_.size());
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     beam_part[i] = beams_log_likelihood(particles_[i].pose, beams);
-    log_likelihood[i] =
-        beam_part[i] + (use_objects ? objects_log_likelihood(particles_[i].pose, prepared_objects, *free_distance_,
-                                                             options_.slamer.unmapped_probability, nullptr)
-                                    : 0.0);
+    log_likelihood[i] = beam_part[i] + objects_weight(particles_[i].pose, prepared_objects);
     particles_[i].log_weight += log_likelihood[i];
   }
   normalize(&particles_);

@@ -121,6 +121,9 @@ class ParticleFilter {
   // `unmapped_probability`: Eq. (7)'s floor (log_map_prior).
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects, const DistanceField& free_space,
                                 double unmapped_probability, std::vector<std::vector<double>>* class_terms) const;
+  // The objects' part of a particle's weight (Eq. (7) with its floor): SLAMER
+  // only, 0 in the other modes. The tracked cloud and the challengers share it.
+  double objects_weight(const Pose2& pose, const PreparedObjects& objects) const;
   void resample();
   // `set`'s log weights normalized to sum to one (in linear space).
   static void normalize(std::vector<Particle>* set);

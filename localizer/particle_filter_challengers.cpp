@@ -77,12 +77,8 @@ void ParticleFilter::compete(const PreparedScan& beams, const PreparedObjects& o
     return;
   }
 
-  const bool use_objects = options_.mode == LocalizerMode::kSlamer;
   for (Particle& c : challengers_) {
-    c.log_weight += beams_log_likelihood(c.pose, beams) +
-                    (use_objects ? objects_log_likelihood(c.pose, objects, *free_distance_,
-                                                          options_.slamer.unmapped_probability, nullptr)
-                                 : 0.0);
+    c.log_weight += beams_log_likelihood(c.pose, beams) + objects_weight(c.pose, objects);
   }
   normalize(&challengers_);
   // The place: the most likely challenger near where the place was (moved
