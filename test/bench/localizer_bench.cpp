@@ -135,8 +135,6 @@ void BM_LocalMatch(benchmark::State& state) {
 }
 BENCHMARK(BM_LocalMatch)->Unit(benchmark::kMillisecond);
 
-// One scan of a lost (or globally localizing) SLAMER filter, 500 particles x 1081 beams:
-// 2000 global proposals scored and 50 injected before the usual update.
 // A SLAMER filter with the shipped defaults and the scan (and its objects) of one place of the map.
 struct SlamerAtOnePlace {
   LocalizerOptions options;
@@ -145,6 +143,8 @@ struct SlamerAtOnePlace {
   LineObjectSet objects = LineRecognizer{RecognizerOptions{}}.recognize(scan);
 };
 
+// One scan of a globally localizing SLAMER filter, 500 particles x 1081 beams:
+// 2000 global proposals scored and 50 injected before the usual update.
 void BM_SlamerRecovering(benchmark::State& state) {
   SlamerAtOnePlace one;
   ParticleFilter& filter = one.filter;
