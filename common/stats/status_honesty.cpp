@@ -15,6 +15,14 @@ void StatusHonesty::add(double time, double error, ReportedStatus status) {
   }
 }
 
+void StatusHonesty::merge(const StatusHonesty& other) {
+  far_after_grace_ += other.far_after_grace_;
+  far_after_grace_flagged_ += other.far_after_grace_flagged_;
+  far_after_grace_ok_ += other.far_after_grace_ok_;
+  close_ += other.close_;
+  close_lost_ += other.close_lost_;
+}
+
 double StatusHonesty::far_flagged_fraction() const {
   return far_after_grace_ == 0 ? 1.0
                                : static_cast<double>(far_after_grace_flagged_) / static_cast<double>(far_after_grace_);

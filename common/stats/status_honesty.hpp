@@ -22,6 +22,8 @@ class StatusHonesty {
 
   // One scan at `time` [s], in order, `error` [m] off the reference.
   void add(double time, double error, ReportedStatus status);
+  // Adds another run's counts (for totals over runs).
+  void merge(const StatusHonesty& other);
 
   int64_t far_after_grace() const { return far_after_grace_; }
   int64_t far_after_grace_flagged() const { return far_after_grace_flagged_; }  // UNCERTAIN or LOST

@@ -90,5 +90,35 @@ TEST(EvalSuite, TheGoalsCountEachWorldOnceOnItsMeanOverTheLocalizerSeeds) {
   EXPECT_NE(render_world(second, options).find("=== world 5, localizer seed 2: "), std::string::npos);
 }
 
+// The status figures are counted over every run of a mode: LFM has 4 scans far
+// off 2 s on in world 5 (1 says UNCERTAIN) and 4 in world 6 (all say LOST); 2
+// of its 10 close scans say LOST. A run without statuses (SLFM here) is left out.
+TEST(EvalSuite, TheStatusFiguresAreTotalsOverTheRunsOfEachMode) {
+  EvalOptions options;
+  options.classes = {{"a", "", std::nullopt}, {"b", "", std::nullopt}};
+  const auto honesty = [](int far_flagged, int close_lost) {
+    StatusHonesty h;
+    for (int k = 0; k < 10; ++k) {  // 5 s close, then 2 s far, then 2 s far that count
+      h.add(0.5 * k, 0.1, k < close_lost ? ReportedStatus::kLost : ReportedStatus::kOk);
+    }
+    for (int k = 0; k < 8; ++k) {
+      h.add(5.0 + 0.5 * k, 1.0, k >= 8 - far_flagged ? ReportedStatus::kLost : ReportedStatus::kOk);
+    }
+    return h;
+  };
+  WorldResult a = world(5, 4.0, 3.0, 0.80, 0.90, 0.95);
+  WorldResult b = world(6, 8.0, 5.0, 0.70, 0.96, 0.92);
+  a.runs[0].scores.honesty = honesty(1, 2);
+  b.runs[0].scores.honesty = honesty(4, 0);
+  a.runs[2].scores.honesty = honesty(0, 0);
+  b.runs[2].scores.honesty = honesty(0, 0);
+  const std::string text = render_summary({a, b}, options);
+  EXPECT_NE(text.find("lfm: 62.5 % of 8 scans > 0.5 m off 2 s on not OK, 10.00 % of 20 < 0.2 m LOST;"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("slamer: 0.0 % of 8 scans"), std::string::npos) << text;
+  EXPECT_EQ(text.find("slfm:"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace slamer

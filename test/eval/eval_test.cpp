@@ -172,6 +172,42 @@ TEST(ScoreRun, MissingChannelsAreNotApplicable) {
   const nlohmann::json json = nlohmann::json::parse(render_json({{"empty.lcm", scores}}, EvalOptions{}));
   EXPECT_TRUE(json.at("runs").at(0).at("pose").is_null());
   EXPECT_TRUE(json.at("runs").at(0).at("slamer").is_null());
+  EXPECT_TRUE(json.at("runs").at(0).at("status_honesty").is_null());
+}
+
+// Scans every 0.3 s; the estimate is 1 m off from 3.0 s to 8.7 s (20 scans),
+// saying OK until 5.7 s and UNCERTAIN from 6.0 s; back on the truth from 9.0 s,
+// saying LOST at 9.0 and 9.3 s. From 2 s after the error passed 0.5 m (5.1 s
+// on: 13 scans) 10 say UNCERTAIN; of the 20 close scans 2 say LOST.
+TEST(ScoreRun, TheStatusIsScoredAgainstTheErrorFromTwoSecondsAfterItPassedHalfAMetre) {
+  const SemanticMap map = make_map();
+  const TrueWorld world(map, WorldOptions{}, "test");
+  RunInputs run;
+  for (int k = 0; k < 40; ++k) {
+    const int64_t utime = 300'000LL * k;
+    run.truth.push_back({utime, {2.0, 2.0, 0.0}, ReportedStatus::kOk});
+    const bool far = k >= 10 && k < 30;
+    const ReportedStatus status = far ? (k >= 20 ? ReportedStatus::kUncertain : ReportedStatus::kOk)
+                                      : (k == 30 || k == 31 ? ReportedStatus::kLost : ReportedStatus::kOk);
+    run.estimate.push_back({utime, {far ? 3.0 : 2.0, 2.0, 0.0}, status});
+  }
+  const RunScores scores = score_run(run, world, world, Pose2{}, EvalOptions{});
+  ASSERT_TRUE(scores.honesty.has_value());
+  EXPECT_EQ(scores.honesty->far_after_grace(), 13);
+  EXPECT_EQ(scores.honesty->far_after_grace_flagged(), 10);
+  EXPECT_EQ(scores.honesty->close(), 20);
+  EXPECT_EQ(scores.honesty->close_lost(), 2);
+  const std::string table = render_table({{"run.lcm", scores}}, EvalOptions{});
+  EXPECT_NE(table.find("76.9 % of 13"), std::string::npos) << table;
+  EXPECT_NE(table.find("10.00"), std::string::npos) << table;
+  const nlohmann::json json = nlohmann::json::parse(render_json({{"run.lcm", scores}}, EvalOptions{}));
+  EXPECT_NEAR(json.at("runs").at(0).at("status_honesty").at("far_flagged_fraction").get<double>(), 10.0 / 13.0, 1e-12);
+
+  // Dead reckoning says nothing of itself: no status figures.
+  for (PoseSample& s : run.estimate) {
+    s.status.reset();
+  }
+  EXPECT_FALSE(score_run(run, world, world, Pose2{}, EvalOptions{}).honesty.has_value());
 }
 
 }  // namespace

@@ -64,7 +64,7 @@ std::vector<PoseError> pose_errors(const std::vector<PoseSample>& truth, const s
       continue;
     }
     errors.push_back({sample.utime, std::hypot(sample.pose.x - true_pose->x, sample.pose.y - true_pose->y),
-                      std::abs(angle_diff(sample.pose.theta, true_pose->theta))});
+                      std::abs(angle_diff(sample.pose.theta, true_pose->theta)), sample.status});
   }
   return errors;
 }
@@ -214,11 +214,26 @@ void Confusion::merge(const Confusion& other) {
   }
 }
 
+std::optional<StatusHonesty> status_honesty(const std::vector<PoseError>& errors) {
+  if (errors.empty()) {
+    return std::nullopt;
+  }
+  StatusHonesty honesty;
+  for (const PoseError& e : errors) {
+    if (!e.status) {
+      return std::nullopt;
+    }
+    honesty.add(static_cast<double>(e.utime) * 1e-6, e.position, *e.status);
+  }
+  return honesty;
+}
+
 RunScores score_run(const RunInputs& run, const TrueWorld& truth_world, const TrueWorld& map_world,
                     const Pose2& lidar_mount, const EvalOptions& options) {
   RunScores scores;
   scores.errors = pose_errors(run.truth, run.estimate);
   scores.pose = summarize(scores.errors, options.lost_threshold);
+  scores.honesty = status_honesty(scores.errors);
   if (run.truth.empty()) {
     return scores;
   }

@@ -13,13 +13,17 @@
 
 #include "common/config/config_reader.hpp"
 #include "common/semantic/objects.hpp"
+#include "common/stats/status_honesty.hpp"
 #include "tools/sim/world.hpp"
 
 namespace slamer {
 
 struct PoseSample {
+  PoseSample() = default;
+  PoseSample(int64_t at, Pose2 p, std::optional<ReportedStatus> s = std::nullopt) : utime(at), pose(p), status(s) {}
   int64_t utime = 0;
   Pose2 pose;
+  std::optional<ReportedStatus> status;  // what the estimate said of itself (POSE.status); none for dead reckoning
 };
 
 // A recognition class and what the world has where an object of it is.
@@ -54,6 +58,7 @@ struct PoseError {
   int64_t utime = 0;
   double position = 0.0;  // [m]
   double heading = 0.0;   // [rad], absolute
+  std::optional<ReportedStatus> status;
 };
 // One error per estimate sample that lies within the ground truth's time span.
 std::vector<PoseError> pose_errors(const std::vector<PoseSample>& truth, const std::vector<PoseSample>& estimate);
@@ -65,6 +70,9 @@ struct PoseErrorStats {
   double lost_fraction = 0.0;
 };
 PoseErrorStats summarize(const std::vector<PoseError>& errors, double lost_threshold);
+// Issue 9's status bars over the errors, in time order; nullopt if there are
+// none or any has no status (an estimate that says nothing of itself).
+std::optional<StatusHonesty> status_honesty(const std::vector<PoseError>& errors);
 
 struct AccuracyStats {
   std::size_t scans = 0;  // scans with at least one object
@@ -107,6 +115,7 @@ struct Confusion {
 struct RunScores {
   std::vector<PoseError> errors;
   PoseErrorStats pose;
+  std::optional<StatusHonesty> honesty;
   AccuracyStats recognizer;
   AccuracyStats map_based;
   AccuracyStats slamer;

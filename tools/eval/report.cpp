@@ -64,6 +64,18 @@ std::string render_table(const std::vector<NamedRun>& runs, const EvalOptions& o
   add(format("Lost (> %.2f m) [%% of scans]", options.lost_threshold),
       pose([](const PoseErrorStats& p) { return format("%.2f", 100.0 * p.lost_fraction); }));
   add("Poses evaluated", pose([](const PoseErrorStats& p) { return std::to_string(p.samples); }));
+  // Issue 9's bars (common/stats/status_honesty.hpp): the scans far off that say
+  // UNCERTAIN or LOST from 2 s after the error passed 0.5 m, the close ones that say LOST.
+  const auto honesty = [](auto f) {
+    return [f](const RunScores& s) { return s.honesty ? f(*s.honesty) : std::string("n/a"); };
+  };
+  add("Status: > 0.5 m off, 2 s on, not OK", honesty([](const StatusHonesty& h) {
+        return h.far_after_grace() == 0 ? std::string("none that far")
+                                        : format("%.1f %% of %.0f", 100.0 * h.far_flagged_fraction(),
+                                                 static_cast<double>(h.far_after_grace()));
+      }));
+  add("        < 0.2 m off, LOST [%]",
+      honesty([](const StatusHonesty& h) { return format("%.2f", 100.0 * h.close_lost_fraction()); }));
   const std::pair<const char*, AccuracyStats RunScores::*> methods[] = {{"ER Acc (recognizer)", &RunScores::recognizer},
                                                                         {"Map-based ER Acc", &RunScores::map_based},
                                                                         {"SLAMER ER Acc", &RunScores::slamer}};
@@ -118,8 +130,18 @@ std::string render_json(const std::vector<NamedRun>& runs, const EvalOptions& op
               {"heading_max_rad", json_number(p.heading_max)},
               {"lost_fraction", json_number(p.lost_fraction)}};
     }
+    nlohmann::json honesty = nullptr;
+    if (s.honesty) {
+      const StatusHonesty& h = *s.honesty;
+      honesty = {{"far_scans_after_2s", h.far_after_grace()},
+                 {"far_flagged_after_2s", h.far_after_grace_flagged()},
+                 {"far_flagged_fraction", h.far_flagged_fraction()},
+                 {"close_scans", h.close()},
+                 {"close_lost_fraction", h.close_lost_fraction()}};
+    }
     out["runs"].push_back({{"name", run.name},
                            {"pose", pose},
+                           {"status_honesty", honesty},
                            {"recognizer", accuracy_json(s.recognizer)},
                            {"map_based", accuracy_json(s.map_based)},
                            {"slamer", accuracy_json(s.slamer)}});

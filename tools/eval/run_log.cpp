@@ -16,6 +16,17 @@
 #include "slamer/semantic_objects_t.hpp"
 
 namespace slamer {
+namespace {
+
+std::optional<ReportedStatus> reported_status(int8_t status) {
+  if (status < static_cast<int8_t>(ReportedStatus::kInitializing) ||
+      status > static_cast<int8_t>(ReportedStatus::kLost)) {
+    return std::nullopt;  // not a status this tool knows: no honesty figures for the run
+  }
+  return static_cast<ReportedStatus>(status);
+}
+
+}  // namespace
 
 RunInputs read_run(const std::string& path, const EvalChannels& channels, const std::string& estimate) {
   EventLogReader log(path);
@@ -39,7 +50,7 @@ RunInputs read_run(const std::string& path, const EvalChannels& channels, const 
     if (channel == channels.ground_truth || (channel == estimate && estimate != channels.odometry)) {
       pose_estimate_t pose{};
       if (decode(event, &pose)) {
-        const PoseSample sample{pose.utime, {pose.x, pose.y, pose.theta}};
+        const PoseSample sample{pose.utime, {pose.x, pose.y, pose.theta}, reported_status(pose.status)};
         if (channel == channels.ground_truth) {
           run.truth.push_back(sample);
         }

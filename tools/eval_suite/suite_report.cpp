@@ -113,6 +113,35 @@ std::string confusion_text(const std::string& title, const Confusion& c, const E
   return out.str();
 }
 
+// Issue 9's status bars per mode, counted over every run.
+std::string status_text(const std::vector<WorldResult>& worlds) {
+  std::ostringstream out;
+  out << "Status (issue 9; goals >= 90 % and < 1 %):";
+  for (const char* mode : {"lfm", "slfm", "slamer"}) {
+    StatusHonesty total;
+    bool any = false;
+    for (const WorldResult& w : worlds) {
+      const RunScores* s = run_named(w, mode);
+      if (s != nullptr && s->honesty) {
+        total.merge(*s->honesty);
+        any = true;
+      }
+    }
+    if (!any) {
+      continue;
+    }
+    out << " " << mode << ": ";
+    if (total.far_after_grace() == 0) {
+      out << "no scan > 0.5 m off 2 s on";
+    } else {
+      out << cell("%.1f %%", 100.0 * total.far_flagged_fraction()) << " of " << total.far_after_grace()
+          << " scans > 0.5 m off 2 s on not OK";
+    }
+    out << ", " << cell("%.2f %%", 100.0 * total.close_lost_fraction()) << " of " << total.close() << " < 0.2 m LOST;";
+  }
+  return out.str();
+}
+
 }  // namespace
 
 uint64_t test_world_seed(uint64_t suite_seed, int index) {
@@ -226,7 +255,8 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
   out << all << doors_text(doors, kOther) << "\n" << all << doors_text(changing, kChanging) << "\n";
   out << "SLAMER ER Acc >= map-based + 1 point on " << above_map << " of " << counted << " worlds, >= recognizer + 5 "
       << "points on " << above_recognizer << (several_seeds ? " (each world's mean over its localizer seeds)" : "")
-      << "\n\n";
+      << "\n";
+  out << status_text(worlds) << "\n";
   Confusion recognizer, map_based, slamer;
   for (const WorldResult& w : worlds) {
     recognizer.merge(slamer_run(w).recognizer_confusion);
