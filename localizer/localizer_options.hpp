@@ -123,6 +123,11 @@ struct StatusOptions {
   // look-alike place fits well now and then, a correct pose nearly always.
   double fit_sustained = 0.65;
   double fit_sustained_time = 10.0;  // [s]
+  // The estimate's travel along its heading summed against the odometry's over
+  // odometry_disagreement_time off by more than odometry_disagreement:
+  // UNCERTAIN (odometry_agreement.hpp; 0: never).
+  double odometry_disagreement = 0.5;        // [m]
+  double odometry_disagreement_time = 10.0;  // [s]
   bool operator==(const StatusOptions&) const = default;
 };
 

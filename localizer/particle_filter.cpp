@@ -38,7 +38,8 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
                                : free_distance_),
       proposals_(std::make_shared<const GlobalProposals>(free_distance_, obstacles_, kClearance)),
       rng_(static_cast<std::mt19937::result_type>(options.seed)),
-      correction_(options.motion.odometry_correction_memory) {
+      correction_(options.motion.odometry_correction_memory),
+      agreement_(options.status.odometry_disagreement > 0.0 ? options.status.odometry_disagreement_time : 0.0) {
   if (options.particles < 1) {
     throw std::invalid_argument("the filter needs at least one particle");
   }
@@ -94,6 +95,9 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   end_challenge();
   increment_.reset();
   last_heading_.reset();  // the learned correction stays: it belongs to the robot, not the pose
+  agreement_.reset();
+  last_pose_.reset();
+  odometry_forward_.reset();
 }
 
 void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
@@ -104,6 +108,7 @@ void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
   } else if (last_heading_) {
     increment_ = raw;
   }
+  odometry_forward_ = odometry_forward_.value_or(0.0) + between(odom_from, odom_to).x;
   const OdometryIncrement u = correction_.correct(raw);
   for (Particle& p : particles_) {
     p.pose = sample_motion(p.pose, u, options_.motion, rng_, noise_gain_);
@@ -123,6 +128,8 @@ void ParticleFilter::diffuse(double seconds) {
   std::normal_distribution<double> standard(0.0, 1.0);
   last_heading_.reset();  // no odometry to compare the estimate's turn with
   increment_.reset();
+  last_pose_.reset();  // nor its travel
+  odometry_forward_.reset();
   const double position = options_.motion.no_odometry_speed * seconds;
   const double heading = options_.motion.no_odometry_turn_rate * seconds;
   for (std::vector<Particle>* set : {&particles_, &challengers_}) {
@@ -394,11 +401,20 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   } else {
     end_challenge();
   }
+  // A jump the filter made on purpose (adopting the challengers' place,
+  // global proposals) is no disagreement with the odometry: start over.
+  if (result.adopted || global_) {
+    agreement_.reset();
+  } else if (last_pose_ && odometry_forward_) {
+    agreement_.add(scan.utime, *last_pose_, result.estimate.pose, *odometry_forward_);
+  }
+  last_pose_ = result.estimate.pose;
+  odometry_forward_.reset();
   result.estimate.status = status(result.estimate);
   result.noise_gain = noise_gain_;
   // Learn the odometry's heading error only from scans the filter is sure of.
   if (increment_ && last_heading_ && result.injected == 0 && result.matched == 0 && !result.adopted &&
-      result.estimate.status == LocalizerStatus::kOk && result.fit >= options_.status.fit_uncertain) {
+      status(result.estimate, false) == LocalizerStatus::kOk && result.fit >= options_.status.fit_uncertain) {
     correction_.observe(*increment_, angle_diff(result.estimate.pose.theta, *last_heading_));
   }
   increment_.reset();

@@ -23,7 +23,9 @@
 // for recovery.adopt_time (a kidnapping prior), so the filter relocalizes by
 // itself without jumping to a look-alike place a single scan favours; it says
 // OK again only once the scans fit as well as at a correct pose
-// (status.fit_confirm).
+// (status.fit_confirm). It says UNCERTAIN while the estimate has lately moved
+// along its heading far from what the odometry measured (a slide the fit
+// cannot show; odometry_agreement.hpp).
 #pragma once
 
 #include <memory>
@@ -39,6 +41,7 @@
 #include "localizer/global_proposals.hpp"
 #include "localizer/local_match.hpp"
 #include "localizer/localizer_options.hpp"
+#include "localizer/odometry_agreement.hpp"
 #include "localizer/odometry_correction.hpp"
 
 namespace slamer {
@@ -144,7 +147,9 @@ class ParticleFilter {
   void replace_least_likely(const std::vector<Pose2>& poses) { replace_least_likely(&particles_, poses); }
   static void replace_least_likely(std::vector<Particle>* set, const std::vector<Pose2>& poses);
   void update_fit(double fit, const PoseEstimate& e, int64_t utime);
-  LocalizerStatus status(const PoseEstimate& e) const;
+  // `with_odometry_agreement` false: the status from the scans alone (what the
+  // odometry correction learns from; its heading is not what a slide disagrees on).
+  LocalizerStatus status(const PoseEstimate& e, bool with_odometry_agreement = true) const;
 
   LocalizerOptions options_;
   Pose2 mount_;
@@ -189,6 +194,11 @@ class ParticleFilter {
   OdometryCorrection correction_;
   std::optional<OdometryIncrement> increment_;  // odometry since the last update (raw), for the correction
   std::optional<double> last_heading_;          // the estimate's heading at the last update
+  // Whether the estimate moves as the odometry says (status UNCERTAIN when not):
+  // the estimate at the last update and the odometry's forward travel since.
+  OdometryAgreement agreement_;
+  std::optional<Pose2> last_pose_;
+  std::optional<double> odometry_forward_;
 };
 
 }  // namespace slamer

@@ -42,7 +42,7 @@ void ParticleFilter::require_confirmation() {
   confirmed_in_row_ = 0;
 }
 
-LocalizerStatus ParticleFilter::status(const PoseEstimate& e) const {
+LocalizerStatus ParticleFilter::status(const PoseEstimate& e, bool with_odometry_agreement) const {
   if (!updated_) {
     return LocalizerStatus::kInitializing;
   }
@@ -51,11 +51,14 @@ LocalizerStatus ParticleFilter::status(const PoseEstimate& e) const {
   }
   // The scan does not fit the map where the estimate puts it; or spread
   // particles, or a posterior resting on a handful of them (e.g. right after a
-  // wide initialization: tight but not yet to be trusted).
+  // wide initialization: tight but not yet to be trusted); or the estimate
+  // has lately travelled far from what the odometry measured.
   if (global_ || searching_ || confirm_scans_seen_ >= 0 || fit_smoothed_ < options_.status.fit_uncertain ||
       fit_sustained_ < options_.status.fit_sustained ||
       std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.status.uncertain_position_sigma ||
-      e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
+      e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size()) ||
+      (with_odometry_agreement && options_.status.odometry_disagreement > 0.0 &&
+       std::abs(agreement_.along_track()) > options_.status.odometry_disagreement)) {
     return LocalizerStatus::kUncertain;
   }
   return LocalizerStatus::kOk;

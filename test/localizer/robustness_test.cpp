@@ -16,6 +16,7 @@
 #include "common/stats/status_honesty.hpp"
 #include "localizer/localizer_node.hpp"
 #include "localizer/motion_model.hpp"
+#include "localizer/odometry_agreement.hpp"
 #include "localizer/scan_fit.hpp"
 #include "test/localizer/options_error.hpp"
 #include "test/localizer/small_world.hpp"
@@ -434,6 +435,93 @@ TEST(Robustness, AResumedPoseTheScansDoNotConfirmHandsOverToGlobalLocalization) 
   EXPECT_EQ(steps.back().status, LocalizerStatus::kOk);
 }
 
+// Wheels slipping on a wet floor: for 3 s of the straight run the odometry
+// reports 1.7x the travel (about 0.7 m too far in all). The scans hold the
+// pose, and their fit stays good, so the fit alone keeps saying OK; that the
+// estimate went 0.5 m less far than the wheels says one of them is wrong.
+// Which, the scans cannot tell (a map that differs makes the estimate slide
+// the same way), so the status says UNCERTAIN until the disagreement has
+// left the 10 s window. The poses are the same either way.
+TEST(Robustness, AnEstimateThatTravelsFarFromWhatTheOdometrySaysIsUncertain) {
+  const SmallWorld w;
+  const auto slipping = [](const Pose2& d) { return Pose2{1.7 * d.x, 1.7 * d.y, d.theta}; };
+  std::vector<Step> runs[2];
+  for (const bool agreement : {true, false}) {
+    LocalizerOptions options = starting_at(w);
+    options.status.odometry_disagreement = agreement ? 0.5 : 0.0;
+    RobustLoop loop(w, options);
+    loop.odometry_fault = distorted_between(6.0, 9.0, slipping);
+    drive(w, realistic_odometry(), &loop);
+    runs[agreement ? 0 : 1] = loop.steps;
+  }
+  const std::vector<Step>& with = runs[0];
+  const std::vector<Step>& without = runs[1];
+  ASSERT_EQ(with.size(), without.size());
+  int uncertain_with = 0, uncertain_without = 0, window = 0;
+  double max_error = 0.0;
+  for (std::size_t i = 0; i < with.size(); ++i) {
+    EXPECT_DOUBLE_EQ(with[i].error, without[i].error) << "the status only: the same poses";
+    if (with[i].time >= 9.0 && with[i].time < 16.0) {
+      ++window;
+      uncertain_with += with[i].status != LocalizerStatus::kOk;
+      uncertain_without += without[i].status != LocalizerStatus::kOk;
+    }
+    max_error = with[i].time >= 6.0 ? std::max(max_error, with[i].error) : max_error;
+    if (with[i].time < 5.0 || with[i].time > 20.0) {  // before the slip, and once its 10 s have passed
+      EXPECT_EQ(with[i].status, without[i].status) << with[i].time;
+    }
+  }
+  std::cout << "[ measured ] wheels slipping 3 s: max error " << max_error
+            << " m; not OK over 9-16 s: " << uncertain_with << " of " << window
+            << " scans with the odometry agreement, " << uncertain_without << " without\n";
+  EXPECT_LT(max_error, 0.4);                   // the scans held the pose (0.30 m)
+  EXPECT_LT(uncertain_without, window / 10);   // and the fit alone stays OK
+  EXPECT_GT(uncertain_with, 9 * window / 10);  // the disagreement does not
+}
+
+TEST(OdometryAgreement, TheEstimatesTravelAlongItsHeadingAgainstTheOdometrysOverTheWindow) {
+  OdometryAgreement agreement(2.0);
+  const double heading = 0.7;
+  Pose2 pose{1.0, 2.0, heading};
+  const auto move = [&](double forward, double sideways) {
+    return Pose2{pose.x + forward * std::cos(heading) - sideways * std::sin(heading),
+                 pose.y + forward * std::sin(heading) + sideways * std::cos(heading), heading};
+  };
+  int64_t utime = 0;
+  // 1 s agreeing at 0.6 m/s, and moving sideways (heading drift's part) does not count.
+  for (int k = 0; k < 10; ++k, utime += 100'000) {
+    const Pose2 next = move(0.06, 0.02);
+    agreement.add(utime, pose, next, 0.06);
+    pose = next;
+  }
+  EXPECT_NEAR(agreement.along_track(), 0.0, 1e-12);
+  // 1 s where the estimate goes half as far as the wheels: -0.3 m.
+  for (int k = 0; k < 10; ++k, utime += 100'000) {
+    const Pose2 next = move(0.03, 0.0);
+    agreement.add(utime, pose, next, 0.06);
+    pose = next;
+  }
+  EXPECT_NEAR(agreement.along_track(), -0.3, 1e-9);
+  // Backwards both: agreeing.
+  agreement.add(utime, pose, move(-0.05, 0.0), -0.05);
+  EXPECT_NEAR(agreement.along_track(), -0.3, 1e-9);
+  // 2 s later the slow second has left the window.
+  for (int k = 0; k < 20; ++k, utime += 100'000) {
+    agreement.add(utime, pose, move(0.06, 0.0), 0.06);
+  }
+  EXPECT_NEAR(agreement.along_track(), 0.0, 1e-9);
+  // Time going back starts over; NaN is ignored; a window of 0 is off.
+  agreement.add(utime, pose, move(0.5, 0.0), 0.0);
+  EXPECT_NEAR(agreement.along_track(), 0.5, 1e-9);
+  agreement.add(utime - 5'000'000, pose, move(0.1, 0.0), 0.0);
+  EXPECT_NEAR(agreement.along_track(), 0.1, 1e-9);
+  agreement.add(utime, pose, move(0.1, 0.0), std::nan(""));
+  EXPECT_NEAR(agreement.along_track(), 0.1, 1e-9);
+  OdometryAgreement off(0.0);
+  off.add(0, pose, move(1.0, 0.0), 0.0);
+  EXPECT_EQ(off.along_track(), 0.0);
+}
+
 TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
   const auto error_of = localizer_options_error;
   EXPECT_EQ(error_of("status: {fit_confirm: 0.75, fit_sustained: 0.65}\n"), "");
@@ -442,6 +530,10 @@ TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
   EXPECT_NE(error_of("status: {fit_sustained: 0.4}\n").find("'status.fit_sustained'"), std::string::npos)
       << error_of("status: {fit_sustained: 0.4}\n");
   EXPECT_NE(error_of("status: {fit_sustained_time: 0}\n").find("'status.fit_sustained_time'"), std::string::npos);
+  EXPECT_NE(error_of("status: {odometry_disagreement: -0.1}\n").find("'status.odometry_disagreement'"),
+            std::string::npos);
+  EXPECT_NE(error_of("status: {odometry_disagreement_time: 0}\n").find("'status.odometry_disagreement_time'"),
+            std::string::npos);
 }
 
 TEST(ScanFit, FractionOfBeamsOnTheMapsObstacles) {
