@@ -12,6 +12,7 @@ void StatusHonesty::add(double time, double error, ReportedStatus status) {
   if (error < kClose) {
     ++close_;
     close_lost_ += status == ReportedStatus::kLost;
+    close_not_ok_ += status != ReportedStatus::kOk;
   }
 }
 
@@ -21,6 +22,7 @@ void StatusHonesty::merge(const StatusHonesty& other) {
   far_after_grace_ok_ += other.far_after_grace_ok_;
   close_ += other.close_;
   close_lost_ += other.close_lost_;
+  close_not_ok_ += other.close_not_ok_;
 }
 
 double StatusHonesty::far_flagged_fraction() const {
@@ -30,6 +32,10 @@ double StatusHonesty::far_flagged_fraction() const {
 
 double StatusHonesty::close_lost_fraction() const {
   return close_ == 0 ? 0.0 : static_cast<double>(close_lost_) / static_cast<double>(close_);
+}
+
+double StatusHonesty::close_not_ok_fraction() const {
+  return close_ == 0 ? 0.0 : static_cast<double>(close_not_ok_) / static_cast<double>(close_);
 }
 
 }  // namespace slamer

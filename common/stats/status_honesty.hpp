@@ -30,9 +30,11 @@ class StatusHonesty {
   int64_t far_after_grace_ok() const { return far_after_grace_ok_; }
   int64_t close() const { return close_; }
   int64_t close_lost() const { return close_lost_; }
+  int64_t close_not_ok() const { return close_not_ok_; }  // UNCERTAIN, LOST or INITIALIZING: what honesty costs
   // 1 when there is nothing to flag; 0 when none are close.
   double far_flagged_fraction() const;
   double close_lost_fraction() const;
+  double close_not_ok_fraction() const;
 
  private:
   std::optional<double> far_since_;
@@ -41,6 +43,7 @@ class StatusHonesty {
   int64_t far_after_grace_ok_ = 0;
   int64_t close_ = 0;
   int64_t close_lost_ = 0;
+  int64_t close_not_ok_ = 0;
 };
 
 }  // namespace slamer

@@ -74,6 +74,7 @@ TEST(BenchScoring, StatusHonestyExcusesTheFirstTwoSecondsOfEachStretchFarOff) {
   EXPECT_EQ(h.close(), 30);
   EXPECT_EQ(h.close_lost(), 1);
   EXPECT_NEAR(h.close_lost_fraction(), 1.0 / 30.0, 1e-12);
+  EXPECT_EQ(h.close_not_ok(), 1);  // the LOST one; the UNCERTAIN ones are far
   EXPECT_DOUBLE_EQ(StatusHonesty{}.far_flagged_fraction(), 1.0);
   const auto json = nlohmann::json::parse(summary_json(score_poses(poses, reference), {}));
   EXPECT_DOUBLE_EQ(json["status_honesty"]["far_flagged_fraction"].get<double>(), 0.5);

@@ -113,7 +113,8 @@ TEST(EvalSuite, TheStatusFiguresAreTotalsOverTheRunsOfEachMode) {
   a.runs[2].scores.honesty = honesty(0, 0);
   b.runs[2].scores.honesty = honesty(0, 0);
   const std::string text = render_summary({a, b}, options);
-  EXPECT_NE(text.find("lfm: 62.5 % of 8 scans > 0.5 m off 2 s on not OK, 10.00 % of 20 < 0.2 m LOST;"),
+  EXPECT_NE(text.find("lfm: 62.5 % of 8 scans > 0.5 m off 2 s on not OK, 10.00 % of 20 < 0.2 m LOST (10.00 % "
+                      "not OK);"),
             std::string::npos)
       << text;
   EXPECT_NE(text.find("slamer: 0.0 % of 8 scans"), std::string::npos) << text;

@@ -199,7 +199,7 @@ TEST(ScoreRun, TheStatusIsScoredAgainstTheErrorFromTwoSecondsAfterItPassedHalfAM
   EXPECT_EQ(scores.honesty->close_lost(), 2);
   const std::string table = render_table({{"run.lcm", scores}}, EvalOptions{});
   EXPECT_NE(table.find("76.9 % of 13"), std::string::npos) << table;
-  EXPECT_NE(table.find("10.00"), std::string::npos) << table;
+  EXPECT_NE(table.find("10.00 / 10.00"), std::string::npos) << table;
   const nlohmann::json json = nlohmann::json::parse(render_json({{"run.lcm", scores}}, EvalOptions{}));
   EXPECT_NEAR(json.at("runs").at(0).at("status_honesty").at("far_flagged_fraction").get<double>(), 10.0 / 13.0, 1e-12);
 

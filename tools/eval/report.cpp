@@ -74,8 +74,9 @@ std::string render_table(const std::vector<NamedRun>& runs, const EvalOptions& o
                                         : format("%.1f %% of %.0f", 100.0 * h.far_flagged_fraction(),
                                                  static_cast<double>(h.far_after_grace()));
       }));
-  add("        < 0.2 m off, LOST [%]",
-      honesty([](const StatusHonesty& h) { return format("%.2f", 100.0 * h.close_lost_fraction()); }));
+  add("        < 0.2 m off, LOST / not OK [%]", honesty([](const StatusHonesty& h) {
+        return format("%.2f / %.2f", 100.0 * h.close_lost_fraction(), 100.0 * h.close_not_ok_fraction());
+      }));
   const std::pair<const char*, AccuracyStats RunScores::*> methods[] = {{"ER Acc (recognizer)", &RunScores::recognizer},
                                                                         {"Map-based ER Acc", &RunScores::map_based},
                                                                         {"SLAMER ER Acc", &RunScores::slamer}};
@@ -133,11 +134,10 @@ std::string render_json(const std::vector<NamedRun>& runs, const EvalOptions& op
     nlohmann::json honesty = nullptr;
     if (s.honesty) {
       const StatusHonesty& h = *s.honesty;
-      honesty = {{"far_scans_after_2s", h.far_after_grace()},
-                 {"far_flagged_after_2s", h.far_after_grace_flagged()},
-                 {"far_flagged_fraction", h.far_flagged_fraction()},
-                 {"close_scans", h.close()},
-                 {"close_lost_fraction", h.close_lost_fraction()}};
+      honesty = {
+          {"far_scans_after_2s", h.far_after_grace()},        {"far_flagged_after_2s", h.far_after_grace_flagged()},
+          {"far_flagged_fraction", h.far_flagged_fraction()}, {"close_scans", h.close()},
+          {"close_lost_fraction", h.close_lost_fraction()},   {"close_not_ok_fraction", h.close_not_ok_fraction()}};
     }
     out["runs"].push_back({{"name", run.name},
                            {"pose", pose},

@@ -137,7 +137,8 @@ std::string status_text(const std::vector<WorldResult>& worlds) {
       out << cell("%.1f %%", 100.0 * total.far_flagged_fraction()) << " of " << total.far_after_grace()
           << " scans > 0.5 m off 2 s on not OK";
     }
-    out << ", " << cell("%.2f %%", 100.0 * total.close_lost_fraction()) << " of " << total.close() << " < 0.2 m LOST;";
+    out << ", " << cell("%.2f %%", 100.0 * total.close_lost_fraction()) << " of " << total.close() << " < 0.2 m LOST ("
+        << cell("%.2f %%", 100.0 * total.close_not_ok_fraction()) << " not OK);";
   }
   return out.str();
 }
