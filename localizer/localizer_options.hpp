@@ -124,10 +124,13 @@ struct StatusOptions {
   double fit_sustained = 0.65;
   double fit_sustained_time = 10.0;  // [s]
   // The estimate's travel along its heading summed against the odometry's over
-  // odometry_disagreement_time off by more than odometry_disagreement:
-  // UNCERTAIN (odometry_agreement.hpp; 0: never).
-  double odometry_disagreement = 0.5;        // [m]
-  double odometry_disagreement_time = 10.0;  // [s]
+  // the last odometry_disagreement_time and at most odometry_disagreement_distance
+  // of driving, off by more than odometry_disagreement: UNCERTAIN
+  // (odometry_agreement.hpp; 0: never). The distance: where 10 % of it, 5x the
+  // worst uncalibrated wheel's scale error, reaches the bar.
+  double odometry_disagreement = 0.5;           // [m]
+  double odometry_disagreement_time = 10.0;     // [s]
+  double odometry_disagreement_distance = 5.0;  // [m]
   bool operator==(const StatusOptions&) const = default;
 };
 

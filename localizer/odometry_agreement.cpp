@@ -17,12 +17,20 @@ void OdometryAgreement::add(int64_t utime, const Pose2& before, const Pose2& aft
   if (!steps_.empty() && utime < steps_.back().utime) {
     reset();
   }
-  steps_.push_back({utime, step});
+  steps_.push_back({utime, step, std::abs(odometry_forward)});
   const auto window = static_cast<int64_t>(window_ * 1e6);
   while (!steps_.empty() && steps_.front().utime <= utime - window) {
     steps_.pop_front();
   }
   // Summed afresh (at most a few hundred steps): no drift from adding and subtracting.
+  double travel = 0.0;
+  for (const Step& s : steps_) {
+    travel += s.travel;
+  }
+  while (steps_.size() > 1 && travel - steps_.front().travel >= distance_) {
+    travel -= steps_.front().travel;
+    steps_.pop_front();
+  }
   sum_ = 0.0;
   for (const Step& s : steps_) {
     sum_ += s.disagreement;

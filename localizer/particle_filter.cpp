@@ -39,7 +39,8 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
       proposals_(std::make_shared<const GlobalProposals>(free_distance_, obstacles_, kClearance)),
       rng_(static_cast<std::mt19937::result_type>(options.seed)),
       correction_(options.motion.odometry_correction_memory),
-      agreement_(options.status.odometry_disagreement > 0.0 ? options.status.odometry_disagreement_time : 0.0) {
+      agreement_(options.status.odometry_disagreement > 0.0 ? options.status.odometry_disagreement_time : 0.0,
+                 options.status.odometry_disagreement_distance) {
   if (options.particles < 1) {
     throw std::invalid_argument("the filter needs at least one particle");
   }

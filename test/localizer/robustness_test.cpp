@@ -480,7 +480,7 @@ TEST(Robustness, AnEstimateThatTravelsFarFromWhatTheOdometrySaysIsUncertain) {
 }
 
 TEST(OdometryAgreement, TheEstimatesTravelAlongItsHeadingAgainstTheOdometrysOverTheWindow) {
-  OdometryAgreement agreement(2.0);
+  OdometryAgreement agreement(2.0, 100.0);
   const double heading = 0.7;
   Pose2 pose{1.0, 2.0, heading};
   const auto move = [&](double forward, double sideways) {
@@ -517,9 +517,30 @@ TEST(OdometryAgreement, TheEstimatesTravelAlongItsHeadingAgainstTheOdometrysOver
   EXPECT_NEAR(agreement.along_track(), 0.1, 1e-9);
   agreement.add(utime, pose, move(0.1, 0.0), std::nan(""));
   EXPECT_NEAR(agreement.along_track(), 0.1, 1e-9);
-  OdometryAgreement off(0.0);
+  OdometryAgreement off(0.0, 5.0);
   off.add(0, pose, move(1.0, 0.0), 0.0);
   EXPECT_EQ(off.along_track(), 0.0);
+}
+
+// The window ends where the odometry has driven `distance`: 1 m steps (a
+// sparse log) each 5 % short add up over 10 s to 0.5 m, over the last 3 m to 0.15 m.
+TEST(OdometryAgreement, TheWindowEndsWhereTheOdometryHasDrivenTheDistance) {
+  OdometryAgreement agreement(10.0, 3.0);
+  Pose2 pose;
+  for (int k = 0; k < 10; ++k) {
+    const Pose2 next{pose.x + 0.95, 0.0, 0.0};
+    agreement.add(100'000LL * k, pose, next, 1.0);
+    pose = next;
+  }
+  EXPECT_NEAR(agreement.along_track(), -0.15, 1e-9);
+  OdometryAgreement by_time(10.0, 100.0);
+  pose = {};
+  for (int k = 0; k < 10; ++k) {
+    const Pose2 next{pose.x + 0.95, 0.0, 0.0};
+    by_time.add(100'000LL * k, pose, next, 1.0);
+    pose = next;
+  }
+  EXPECT_NEAR(by_time.along_track(), -0.5, 1e-9);
 }
 
 TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
@@ -533,6 +554,8 @@ TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
   EXPECT_NE(error_of("status: {odometry_disagreement: -0.1}\n").find("'status.odometry_disagreement'"),
             std::string::npos);
   EXPECT_NE(error_of("status: {odometry_disagreement_time: 0}\n").find("'status.odometry_disagreement_time'"),
+            std::string::npos);
+  EXPECT_NE(error_of("status: {odometry_disagreement_distance: 0}\n").find("'status.odometry_disagreement_distance'"),
             std::string::npos);
 }
 
