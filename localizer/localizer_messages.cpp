@@ -51,8 +51,8 @@ particles_t to_particles_message(const std::vector<Particle>& particles, int64_t
   return message;
 }
 
-std::pair<int8_t, std::string> process_state(LocalizerStatus status, const InputHealth& health,
-                                             const LocalizerChannels& channels) {
+std::pair<int8_t, std::string> process_state(LocalizerStatus status, const std::string& reason,
+                                             const InputHealth& health, const LocalizerChannels& channels) {
   std::string message;
   const auto add = [&](const std::string& part) { message += (message.empty() ? "" : "; ") + part; };
   const auto missing = [&](const std::string& channel, double age, const std::string& consequence) {
@@ -61,9 +61,9 @@ std::pair<int8_t, std::string> process_state(LocalizerStatus status, const Input
     add("no " + channel + (std::isfinite(age) ? " for " + std::string(text) : " yet") + ": " + consequence);
   };
   if (status == LocalizerStatus::kLost) {
-    add("lost: the scans do not fit the map");
+    add("lost: " + reason);
   } else if (status == LocalizerStatus::kUncertain) {
-    add("uncertain");
+    add("uncertain: " + reason);
   }
   if (health.odometry_missing) {
     missing(channels.odometry, health.odometry_age, "following the scans alone");

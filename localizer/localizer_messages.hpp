@@ -21,8 +21,8 @@ pose_estimate_t to_pose_message(const UpdateResult& result, int64_t utime, int p
 particles_t to_particles_message(const std::vector<Particle>& particles, int64_t utime, int count);
 
 // PROCESS_STATUS's state and message: the filter's status and the inputs it goes without.
-std::pair<int8_t, std::string> process_state(LocalizerStatus status, const InputHealth& health,
-                                             const LocalizerChannels& channels);
+std::pair<int8_t, std::string> process_state(LocalizerStatus status, const std::string& reason,
+                                             const InputHealth& health, const LocalizerChannels& channels);
 
 // An INITIAL_POSE for a log line: "(x, y, theta), sigma (sx, sy, stheta)".
 std::string describe(const initial_pose_t& message);

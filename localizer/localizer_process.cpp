@@ -271,7 +271,8 @@ void LocalizerProcess::publish(const UpdateResult& result) {
                   node_.resumed()->global ? "global localization" : "its sigma grown by that time, UNCERTAIN");
     bus_.log_info(text);
   }
-  const auto [state, message] = process_state(result.estimate.status, node_.health(), config_.channels);
+  const auto [state, message] =
+      process_state(result.estimate.status, result.estimate.status_reason, node_.health(), config_.channels);
   bus_.set_state(state, message);
   if (result.estimate.status == LocalizerStatus::kOk) {
     pose_keeper_.offer(

@@ -411,11 +411,13 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   }
   last_pose_ = result.estimate.pose;
   odometry_forward_.reset();
-  result.estimate.status = status(result.estimate);
+  const StatusJudgement judged = status(result.estimate);
+  result.estimate.status = judged.status;
+  result.estimate.status_reason = judged.reason;
   result.noise_gain = noise_gain_;
   // Learn the odometry's heading error only from scans the filter is sure of.
   if (increment_ && last_heading_ && result.injected == 0 && result.matched == 0 && !result.adopted &&
-      status(result.estimate, false) == LocalizerStatus::kOk && result.fit >= options_.status.fit_uncertain) {
+      status(result.estimate, false).status == LocalizerStatus::kOk && result.fit >= options_.status.fit_uncertain) {
     correction_.observe(*increment_, angle_diff(result.estimate.pose.theta, *last_heading_));
   }
   increment_.reset();
@@ -459,7 +461,9 @@ PoseEstimate ParticleFilter::estimate() const {
     }
   }
   e.ess = (total * total) / sum_squares;
-  e.status = status(e);
+  const StatusJudgement judged = status(e);
+  e.status = judged.status;
+  e.status_reason = judged.reason;
   return e;
 }
 

@@ -58,6 +58,7 @@ struct PoseEstimate {
   double covariance[9] = {};  // (x, y, theta), row-major
   double ess = 0.0;
   LocalizerStatus status = LocalizerStatus::kInitializing;
+  const char* status_reason = "no scan yet";  // why, when not OK (a fixed text; "" when OK)
 };
 
 struct UpdateResult {
@@ -149,7 +150,11 @@ class ParticleFilter {
   void update_fit(double fit, const PoseEstimate& e, int64_t utime);
   // `with_odometry_agreement` false: the status from the scans alone (what the
   // odometry correction learns from; its heading is not what a slide disagrees on).
-  LocalizerStatus status(const PoseEstimate& e, bool with_odometry_agreement = true) const;
+  struct StatusJudgement {
+    LocalizerStatus status;
+    const char* reason;  // a fixed text; "" when OK
+  };
+  StatusJudgement status(const PoseEstimate& e, bool with_odometry_agreement = true) const;
 
   LocalizerOptions options_;
   Pose2 mount_;

@@ -42,26 +42,47 @@ void ParticleFilter::require_confirmation() {
   confirmed_in_row_ = 0;
 }
 
-LocalizerStatus ParticleFilter::status(const PoseEstimate& e, bool with_odometry_agreement) const {
+ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bool with_odometry_agreement) const {
+  using enum LocalizerStatus;
   if (!updated_) {
-    return LocalizerStatus::kInitializing;
+    return {kInitializing, "no scan yet"};
   }
-  if ((lost_ && !global_) || low_likelihood_scans_ >= options_.status.lost_after) {
-    return LocalizerStatus::kLost;
+  if (lost_ && !global_) {
+    return {kLost, "the scans do not fit the map"};
+  }
+  if (low_likelihood_scans_ >= options_.status.lost_after) {
+    return {kLost, "the scans' likelihood is below its bound"};
   }
   // The scan does not fit the map where the estimate puts it; or spread
   // particles, or a posterior resting on a handful of them (e.g. right after a
   // wide initialization: tight but not yet to be trusted); or the estimate
   // has lately travelled far from what the odometry measured.
-  if (global_ || searching_ || confirm_scans_seen_ >= 0 || fit_smoothed_ < options_.status.fit_uncertain ||
-      fit_sustained_ < options_.status.fit_sustained ||
-      std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.status.uncertain_position_sigma ||
-      e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size()) ||
-      (with_odometry_agreement && options_.status.odometry_disagreement > 0.0 &&
-       std::abs(agreement_.along_track()) > options_.status.odometry_disagreement)) {
-    return LocalizerStatus::kUncertain;
+  if (global_) {
+    return {kUncertain, "localizing globally"};
   }
-  return LocalizerStatus::kOk;
+  if (searching_) {
+    return {kUncertain, "searching after lost: the scans do not yet fit as at a right pose"};
+  }
+  if (confirm_scans_seen_ >= 0) {
+    return {kUncertain, "a resumed pose the scans have not confirmed yet"};
+  }
+  if (fit_smoothed_ < options_.status.fit_uncertain) {
+    return {kUncertain, "the scan fits the map poorly"};
+  }
+  if (fit_sustained_ < options_.status.fit_sustained) {
+    return {kUncertain, "the scans have fitted the map poorly for a while"};
+  }
+  if (std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.status.uncertain_position_sigma) {
+    return {kUncertain, "the particles are spread"};
+  }
+  if (e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
+    return {kUncertain, "a few particles carry the estimate"};
+  }
+  if (with_odometry_agreement && options_.status.odometry_disagreement > 0.0 &&
+      std::abs(agreement_.along_track()) > options_.status.odometry_disagreement) {
+    return {kUncertain, "the estimate has lately moved far from what the odometry measured"};
+  }
+  return {kOk, ""};
 }
 
 void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime) {

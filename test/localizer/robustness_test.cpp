@@ -14,10 +14,12 @@
 #include <random>
 
 #include "common/stats/status_honesty.hpp"
+#include "localizer/localizer_messages.hpp"
 #include "localizer/localizer_node.hpp"
 #include "localizer/motion_model.hpp"
 #include "localizer/odometry_agreement.hpp"
 #include "localizer/scan_fit.hpp"
+#include "slamer/process_status_t.hpp"
 #include "test/localizer/options_error.hpp"
 #include "test/localizer/small_world.hpp"
 #include "tools/sim/simulator.hpp"
@@ -52,6 +54,7 @@ struct Step {
   double heading_error = 0.0;  // [rad]
   double fit = 0.0;
   double learned = 0.0;  // [rad/m]
+  std::string reason;    // why not OK
 };
 
 // Drives the small room's path; the filter sees the simulated odometry through
@@ -78,7 +81,8 @@ class RobustLoop : public SimulatorSink {
     while (const auto out = node_.poll(std::numeric_limits<int64_t>::max())) {
       const Pose2& e = out->estimate.pose;
       steps.push_back({t, std::hypot(e.x - truth_.x, e.y - truth_.y), out->estimate.status,
-                       angle_diff(e.theta, truth_.theta), out->fit, out->heading_per_metre});
+                       angle_diff(e.theta, truth_.theta), out->fit, out->heading_per_metre,
+                       out->estimate.status_reason});
     }
   }
   void on_encoders(const EncoderSample&) override {}
@@ -464,6 +468,9 @@ TEST(Robustness, AnEstimateThatTravelsFarFromWhatTheOdometrySaysIsUncertain) {
     if (with[i].time >= 9.0 && with[i].time < 16.0) {
       ++window;
       uncertain_with += with[i].status != LocalizerStatus::kOk;
+      if (with[i].status == LocalizerStatus::kUncertain && without[i].status == LocalizerStatus::kOk) {
+        EXPECT_EQ(with[i].reason, "the estimate has lately moved far from what the odometry measured");
+      }
       uncertain_without += without[i].status != LocalizerStatus::kOk;
     }
     max_error = with[i].time >= 6.0 ? std::max(max_error, with[i].error) : max_error;
@@ -477,6 +484,21 @@ TEST(Robustness, AnEstimateThatTravelsFarFromWhatTheOdometrySaysIsUncertain) {
   EXPECT_LT(max_error, 0.4);                   // the scans held the pose (0.30 m)
   EXPECT_LT(uncertain_without, window / 10);   // and the fit alone stays OK
   EXPECT_GT(uncertain_with, 9 * window / 10);  // the disagreement does not
+}
+
+// PROCESS_STATUS says why the pose is not OK, in the filter's words.
+TEST(ProcessState, SaysWhyThePoseIsUncertainOrLost) {
+  const InputHealth health;
+  const LocalizerChannels channels;
+  const auto uncertain = process_state(LocalizerStatus::kUncertain, "the particles are spread", health, channels);
+  EXPECT_EQ(uncertain.first, process_status_t::DEGRADED);
+  EXPECT_EQ(uncertain.second, "uncertain: the particles are spread");
+  const auto lost = process_state(LocalizerStatus::kLost, "the scans do not fit the map", health, channels);
+  EXPECT_EQ(lost.first, process_status_t::ERROR);
+  EXPECT_EQ(lost.second, "lost: the scans do not fit the map");
+  const auto ok = process_state(LocalizerStatus::kOk, "", health, channels);
+  EXPECT_EQ(ok.first, process_status_t::OK);
+  EXPECT_EQ(ok.second, "");
 }
 
 TEST(OdometryAgreement, TheEstimatesTravelAlongItsHeadingAgainstTheOdometrysOverTheWindow) {
