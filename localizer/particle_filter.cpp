@@ -95,9 +95,8 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   noise_gain_ = 1.0;
   end_challenge();
   increment_.reset();
-  last_heading_.reset();  // the learned correction stays: it belongs to the robot, not the pose
+  last_pose_.reset();  // the learned correction stays: it belongs to the robot, not the pose
   agreement_.reset();
-  last_pose_.reset();
   odometry_forward_.reset();
 }
 
@@ -106,7 +105,7 @@ void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
   if (increment_) {  // several predictions before one update: sum them
     increment_ =
         OdometryIncrement{increment_->rot1 + increment_->rot2 + raw.rot1, increment_->trans + raw.trans, raw.rot2};
-  } else if (last_heading_) {
+  } else if (last_pose_) {
     increment_ = raw;
   }
   odometry_forward_ = odometry_forward_.value_or(0.0) + between(odom_from, odom_to).x;
@@ -127,9 +126,8 @@ void ParticleFilter::diffuse(double seconds) {
     return;
   }
   std::normal_distribution<double> standard(0.0, 1.0);
-  last_heading_.reset();  // no odometry to compare the estimate's turn with
+  last_pose_.reset();  // no odometry to compare the estimate's turn and travel with
   increment_.reset();
-  last_pose_.reset();  // nor its travel
   odometry_forward_.reset();
   const double position = options_.motion.no_odometry_speed * seconds;
   const double heading = options_.motion.no_odometry_turn_rate * seconds;
@@ -409,19 +407,16 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   } else if (last_pose_ && odometry_forward_) {
     agreement_.add(scan.utime, *last_pose_, result.estimate.pose, *odometry_forward_);
   }
-  last_pose_ = result.estimate.pose;
   odometry_forward_.reset();
-  const StatusJudgement judged = status(result.estimate);
-  result.estimate.status = judged.status;
-  result.estimate.status_reason = judged.reason;
+  judge(&result.estimate);
   result.noise_gain = noise_gain_;
   // Learn the odometry's heading error only from scans the filter is sure of.
-  if (increment_ && last_heading_ && result.injected == 0 && result.matched == 0 && !result.adopted &&
+  if (increment_ && last_pose_ && result.injected == 0 && result.matched == 0 && !result.adopted &&
       status(result.estimate, false).status == LocalizerStatus::kOk && result.fit >= options_.status.fit_uncertain) {
-    correction_.observe(*increment_, angle_diff(result.estimate.pose.theta, *last_heading_));
+    correction_.observe(*increment_, angle_diff(result.estimate.pose.theta, last_pose_->theta));
   }
   increment_.reset();
-  last_heading_ = result.estimate.pose.theta;
+  last_pose_ = result.estimate.pose;
   result.heading_per_metre = correction_.heading_per_metre();
   if (result.estimate.ess < options_.resample_threshold * static_cast<double>(particles_.size())) {
     resample();
@@ -461,9 +456,7 @@ PoseEstimate ParticleFilter::estimate() const {
     }
   }
   e.ess = (total * total) / sum_squares;
-  const StatusJudgement judged = status(e);
-  e.status = judged.status;
-  e.status_reason = judged.reason;
+  judge(&e);
   return e;
 }
 

@@ -155,6 +155,8 @@ class ParticleFilter {
     const char* reason;  // a fixed text; "" when OK
   };
   StatusJudgement status(const PoseEstimate& e, bool with_odometry_agreement = true) const;
+  // Sets e's status and its reason.
+  void judge(PoseEstimate* e) const;
 
   LocalizerOptions options_;
   Pose2 mount_;
@@ -198,11 +200,12 @@ class ParticleFilter {
   std::optional<int64_t> challenger_utime_;
   OdometryCorrection correction_;
   std::optional<OdometryIncrement> increment_;  // odometry since the last update (raw), for the correction
-  std::optional<double> last_heading_;          // the estimate's heading at the last update
-  // Whether the estimate moves as the odometry says (status UNCERTAIN when not):
-  // the estimate at the last update and the odometry's forward travel since.
-  OdometryAgreement agreement_;
+  // The estimate at the last update: the turn the correction learns and the
+  // travel the agreement compares are measured from it.
   std::optional<Pose2> last_pose_;
+  // Whether the estimate moves as the odometry says (status UNCERTAIN when not),
+  // and the odometry's forward travel since the last update.
+  OdometryAgreement agreement_;
   std::optional<double> odometry_forward_;
 };
 

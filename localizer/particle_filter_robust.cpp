@@ -42,6 +42,12 @@ void ParticleFilter::require_confirmation() {
   confirmed_in_row_ = 0;
 }
 
+void ParticleFilter::judge(PoseEstimate* e) const {
+  const StatusJudgement judged = status(*e);
+  e->status = judged.status;
+  e->status_reason = judged.reason;
+}
+
 ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bool with_odometry_agreement) const {
   using enum LocalizerStatus;
   if (!updated_) {

@@ -2,6 +2,14 @@
 
 namespace slamer {
 
+std::optional<ReportedStatus> reported_status(int8_t status) {
+  if (status < static_cast<int8_t>(ReportedStatus::kInitializing) ||
+      status > static_cast<int8_t>(ReportedStatus::kLost)) {
+    return std::nullopt;
+  }
+  return static_cast<ReportedStatus>(status);
+}
+
 void StatusHonesty::add(double time, double error, ReportedStatus status) {
   far_since_ = error > kFar ? far_since_.value_or(time) : std::optional<double>();
   if (far_since_ && time - *far_since_ >= kGraceSeconds) {

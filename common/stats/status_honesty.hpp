@@ -13,6 +13,8 @@ namespace slamer {
 
 // pose_estimate_t status values.
 enum class ReportedStatus : int8_t { kInitializing = 0, kOk = 1, kUncertain = 2, kLost = 3 };
+// A message's status field as one of those; nullopt for a value outside them (a damaged or foreign log).
+std::optional<ReportedStatus> reported_status(int8_t status);
 
 class StatusHonesty {
  public:

@@ -76,6 +76,11 @@ TEST(BenchScoring, StatusHonestyExcusesTheFirstTwoSecondsOfEachStretchFarOff) {
   EXPECT_NEAR(h.close_lost_fraction(), 1.0 / 30.0, 1e-12);
   EXPECT_EQ(h.close_not_ok(), 1);  // the LOST one; the UNCERTAIN ones are far
   EXPECT_DOUBLE_EQ(StatusHonesty{}.far_flagged_fraction(), 1.0);
+  // A message's status field: the four values, nothing else.
+  EXPECT_EQ(reported_status(2), ReportedStatus::kUncertain);
+  EXPECT_EQ(reported_status(0), ReportedStatus::kInitializing);
+  EXPECT_FALSE(reported_status(4).has_value());
+  EXPECT_FALSE(reported_status(-1).has_value());
   const auto json = nlohmann::json::parse(summary_json(score_poses(poses, reference), {}));
   EXPECT_DOUBLE_EQ(json["status_honesty"]["far_flagged_fraction"].get<double>(), 0.5);
 }

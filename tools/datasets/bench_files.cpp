@@ -90,9 +90,11 @@ std::vector<PoseReport> read_pose_reports(const std::string& lcm_path, const std
   std::vector<PoseReport> reports;
   while (const std::optional<LogEvent> event = reader.next()) {
     pose_estimate_t m;
-    if (event->channel == channel && decode_message(event->data.data(), event->data.size(), &m) == DecodeStatus::kOk &&
-        m.status >= 0 && m.status <= 3) {
-      reports.push_back({m.utime, {m.x, m.y, m.theta}, static_cast<BenchStatus>(m.status)});
+    if (event->channel != channel || decode_message(event->data.data(), event->data.size(), &m) != DecodeStatus::kOk) {
+      continue;
+    }
+    if (const std::optional<BenchStatus> status = reported_status(m.status)) {
+      reports.push_back({m.utime, {m.x, m.y, m.theta}, *status});
     }
   }
   return reports;

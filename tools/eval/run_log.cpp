@@ -16,17 +16,6 @@
 #include "slamer/semantic_objects_t.hpp"
 
 namespace slamer {
-namespace {
-
-std::optional<ReportedStatus> reported_status(int8_t status) {
-  if (status < static_cast<int8_t>(ReportedStatus::kInitializing) ||
-      status > static_cast<int8_t>(ReportedStatus::kLost)) {
-    return std::nullopt;  // not a status this tool knows: no honesty figures for the run
-  }
-  return static_cast<ReportedStatus>(status);
-}
-
-}  // namespace
 
 RunInputs read_run(const std::string& path, const EvalChannels& channels, const std::string& estimate) {
   EventLogReader log(path);
@@ -50,6 +39,7 @@ RunInputs read_run(const std::string& path, const EvalChannels& channels, const 
     if (channel == channels.ground_truth || (channel == estimate && estimate != channels.odometry)) {
       pose_estimate_t pose{};
       if (decode(event, &pose)) {
+        // A status this tool does not know: no status figures for the run.
         const PoseSample sample{pose.utime, {pose.x, pose.y, pose.theta}, reported_status(pose.status)};
         if (channel == channels.ground_truth) {
           run.truth.push_back(sample);
