@@ -30,6 +30,16 @@ double localizer_state_after(const Listener& bus, double from, int8_t state, con
   return -1.0;
 }
 
+// What the stack's processes logged, for a failure message: the supervisor's spawns and exits,
+// and the logs of the two processes downstream of the drivers.
+std::string stack_logs(const std::string& dir) {
+  std::string text;
+  for (const char* name : {"supervisord", "recognizer", "localizer"}) {
+    text += std::string("--- ") + name + ".log\n" + test::read_file(dir + "/log/" + name + ".log");
+  }
+  return text;
+}
+
 TEST(SlamerLaunch, Kill9OfADriverIsAGapTheLocalizerReportsAsDegradedAndRidesOut) {
   const std::string dir = test::temp_dir();
   const std::string url = test::unique_lcm_url(73);
@@ -84,7 +94,7 @@ TEST(SlamerLaunch, Kill9OfADriverIsAGapTheLocalizerReportsAsDegradedAndRidesOut)
     ASSERT_TRUE(bus.until(
         10.0, [&] { return localizer_state_after(bus, killed_at, process_status_t::DEGRADED, gap.missing) > 0.0; }))
         << "the localizer did not report the gap of " << gap.driver << "\n"
-        << test::read_file(dir + "/log/localizer.log");
+        << stack_logs(dir);
     const double degraded_at = localizer_state_after(bus, killed_at, process_status_t::DEGRADED, gap.missing);
     ASSERT_TRUE(bus.until(20.0,
                           [&] {
@@ -94,7 +104,7 @@ TEST(SlamerLaunch, Kill9OfADriverIsAGapTheLocalizerReportsAsDegradedAndRidesOut)
                                        20;
                           }))
         << gap.driver << " came back but the localizer did not track OK again\n"
-        << test::read_file(dir + "/log/localizer.log");
+        << stack_logs(dir);
     const std::vector<double>& stream = gap.driver == std::string("slamer-urg") ? bus.lidar : bus.odometry;
     std::printf(
         "[ measured ] kill -9 of %s: its stream back after %.2f s; the localizer DEGRADED after %.2f s, OK again "

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
@@ -32,6 +33,24 @@ std::string short_log(const std::string& name) {
                                                            "--config", config, "--seed", "9", "--out", log});
   EXPECT_EQ(sim.wait(60.0), std::optional<int>(0)) << sim.stderr_text();
   return log;
+}
+
+// Waits until the log lcm-logger is writing holds an event on `channel` (the logger
+// records and the sender is up, however long a loaded machine took to start them).
+bool until_recorded(const std::string& path, const std::string& channel, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (std::filesystem::exists(path)) {
+      lcm::LogFile log(path, "r");
+      for (const lcm::LogEvent* e = log.good() ? log.readNextEvent() : nullptr; e != nullptr; e = log.readNextEvent()) {
+        if (e->channel == channel) {
+          return true;
+        }
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return false;
 }
 
 std::map<std::string, std::vector<int64_t>> utimes_by_channel(const std::string& path) {
@@ -130,11 +149,12 @@ TEST(SlamerRecognizer, LiveWithTheRealLogplayerAndLogger) {
   test::ChildProcess logger("/usr/bin/lcm-logger", {"--lcm-url=" + url, "-f", "-q", recorded});
   test::ChildProcess recognizer(test::binary_path("slamer-recognizer"),
                                 {"--config", kSource + "/config/recognizer.yaml", "--lcm-url", url});
-  // Garbage first: it must be counted, not fatal.
+  // Garbage first: it must be counted, not fatal. Sent once the recognizer is up (its first
+  // PROCESS_STATUS is recorded), or nothing would be there to count it.
+  ASSERT_TRUE(until_recorded(recorded, "PROCESS_STATUS", 30.0)) << recognizer.stderr_text();
   {
     lcm::LCM bus(url);
     ASSERT_TRUE(bus.good());
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
     const std::string junk = "definitely not a laser scan";
     bus.publish("LIDAR", junk.data(), static_cast<unsigned>(junk.size()));
   }
@@ -179,7 +199,7 @@ TEST(SlamerRecognizer, CountsMissedAndOutOfOrderScans) {
   test::ChildProcess recognizer(test::binary_path("slamer-recognizer"), {"--lcm-url", url});
   lcm::LCM bus(url);
   ASSERT_TRUE(bus.good());
-  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  ASSERT_TRUE(until_recorded(recorded, "PROCESS_STATUS", 30.0)) << recognizer.stderr_text();
   const auto send = [&](int64_t seq, int64_t utime) {
     laser_scan_t scan{};
     scan.utime = utime;
