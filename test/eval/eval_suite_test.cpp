@@ -121,5 +121,35 @@ TEST(EvalSuite, TheStatusFiguresAreTotalsOverTheRunsOfEachMode) {
   EXPECT_EQ(text.find("slfm:"), std::string::npos) << text;
 }
 
+// Issue 11's false-label bar counts, over all of a method's objects, those
+// labelled a door (any door class) where the truth has no door and those
+// labelled no_entry_line where it has none; a door called the other door state
+// is wrong but not a door where there is none. SLAMER's 100 objects: free space
+// called an open door 3 times, a wall a closed glass door once and no_entry_line
+// twice, an open door called closed 5 times.
+TEST(EvalSuite, FalseDoorsAndNoEntryLinesAreSharesOfAllObjects) {
+  const EvalOptions options;  // the shipped classes
+  const auto index = [&](const char* name) { return options.class_index(name); };
+  WorldResult w = world(5, 4.0, 3.0, 0.80, 0.90, 0.95);
+  Confusion& c = w.runs[2].scores.slamer_confusion;
+  c = Confusion{};
+  const std::size_t n = options.classes.size();
+  const auto add = [&](const char* truth, const char* predicted, int times) {
+    for (int k = 0; k < times; ++k) {
+      c.add(index(truth), index(predicted), n);
+    }
+  };
+  add("free_space", "open_door", 3);
+  add("others", "closed_glass_door", 1);
+  add("others", "no_entry_line", 2);
+  add("open_door", "closed_door", 5);
+  add("no_entry_line", "no_entry_line", 4);
+  add("others", "others", 84);
+  c.add(index("fence"), -2, n);  // no label: counted among the objects
+  const std::string text = render_summary({w}, options);
+  EXPECT_NE(text.find("SLAMER: 6.00 % of 100 objects (a door 4.00 %, no_entry_line 2.00 %)"), std::string::npos)
+      << text;
+}
+
 }  // namespace
 }  // namespace slamer

@@ -113,6 +113,29 @@ std::string confusion_text(const std::string& title, const Confusion& c, const E
   return out.str();
 }
 
+// Issue 11's bar on labels where the world has nothing of the kind: objects
+// labelled a door (any door class) where there is no door, or no_entry_line
+// where there is none, as shares of all of a method's objects.
+std::string false_labels_text(const std::string& method, const Confusion& c, const EvalOptions& options) {
+  const std::size_t n = options.classes.size();
+  const int no_entry = options.class_index("no_entry_line");
+  const auto is_door = [&](std::size_t k) { return k < n && options.classes[k].door_state.has_value(); };
+  int64_t objects = 0, doors = 0, no_entry_lines = 0;
+  for (std::size_t i = 0; i < c.counts.size() && i < n; ++i) {
+    for (std::size_t j = 0; j < c.counts[i].size(); ++j) {
+      const int64_t v = c.counts[i][j];
+      objects += v;
+      doors += is_door(j) && !is_door(i) ? v : 0;
+      no_entry_lines += static_cast<int>(j) == no_entry && static_cast<int>(i) != no_entry ? v : 0;
+    }
+  }
+  const auto share = [&](int64_t k) {
+    return objects == 0 ? std::string("-") : cell("%.2f %%", 100.0 * static_cast<double>(k) / objects);
+  };
+  return method + ": " + share(doors + no_entry_lines) + " of " + std::to_string(objects) + " objects (a door " +
+         share(doors) + ", no_entry_line " + share(no_entry_lines) + ")";
+}
+
 // Issue 9's status bars per mode, counted over every run.
 std::string status_text(const std::vector<WorldResult>& worlds) {
   std::ostringstream out;
@@ -264,6 +287,10 @@ std::string render_summary(const std::vector<WorldResult>& worlds, const EvalOpt
     map_based.merge(slamer_run(w).map_based_confusion);
     slamer.merge(slamer_run(w).slamer_confusion);
   }
+  out << "Labelled a door or no_entry_line where there is none (issue 11's goal for SLAMER: under 1 %): "
+      << false_labels_text("recognizer", recognizer, options) << "; "
+      << false_labels_text("map-based", map_based, options) << "; " << false_labels_text("SLAMER", slamer, options)
+      << "\n";
   out << confusion_text("Recognizer", recognizer, options) << "\n"
       << confusion_text("Map-based (SLAMER's pose)", map_based, options) << "\n"
       << confusion_text("SLAMER", slamer, options);
