@@ -60,6 +60,7 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
   reader.read("dirichlet_a2", &o->dirichlet_a2, positive());
   reader.read("prior_sigma", &o->prior_sigma, positive());
   reader.read("free_space_margin", &o->free_space_margin, in_range(0.0, 2.0));
+  reader.read("free_space_inside", &o->free_space_inside);
   reader.read("unmapped_probability", &o->unmapped_probability, in_range(0.0, 0.99));
   reader.read("object_weight", &o->object_weight, in_range(0.0, 10.0));
   reader.read("object_samples", &o->object_samples, in_range(1, 50));

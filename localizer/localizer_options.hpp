@@ -66,6 +66,12 @@ struct SlamerOptions {
   // door, and the prior cannot tell them apart. Not in the particle weights:
   // there it pulled the pose off doorways (README, "Calibrated across worlds").
   double free_space_margin = 0.45;
+  // In the class posteriors, free space's distance from the samples between the
+  // object's ends only: a spatial line's ends lie on the walls that bound its
+  // gap, never in free space, and with them a gap beside a mapped door was
+  // nearer the door than free space. Off: it halves the false doors but costs a
+  // third of the no-entry lines (README, "False doors").
+  bool free_space_inside = false;
   // Eq. (7) in the particle weights as a mixture: with this probability an
   // object is one the map lacks (furniture added, a door moved), whose prior
   // does not depend on the pose, as LFM's z_rand does for beams. Without it an

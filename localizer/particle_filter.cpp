@@ -262,6 +262,7 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
 
 double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
                                               const DistanceField& free_space, double unmapped_probability,
+                                              bool free_space_inside,
                                               std::vector<std::vector<double>>* class_terms) const {
   // The sensor pose in grid cells: one transform per particle.
   const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
@@ -278,17 +279,23 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   const double prior_at_far = log_map_prior(far, options_.slamer.prior_sigma, unmapped_probability);
   double total = 0.0;
   std::vector<double> terms;
-  std::vector<Cell> cells;  // sample cells on the map; off-map samples are left out
+  std::vector<Cell> cells;        // sample cells on the map; off-map samples are left out
+  std::vector<Cell> inner_cells;  // of the samples between the ends
   for (const PreparedObjects::Object& o : objects.objects) {
     cells.clear();
-    for (const Eigen::Vector2d& p : o.samples) {
+    inner_cells.clear();
+    for (std::size_t k = 0; k < o.samples.size(); ++k) {
+      const Eigen::Vector2d& p = o.samples[k];
       const double gx = (c * p.x() - s * p.y() + grid.x) * to_cells;
       const double gy = (s * p.x() + c * p.y() + grid.y) * to_cells;
       if (gx >= 0.0 && gy >= 0.0 && gx < geometry_.width && gy < geometry_.height) {
         cells.push_back({static_cast<int>(gx), static_cast<int>(gy)});
+        if (k > 0 && k + 1 < o.samples.size()) {
+          inner_cells.push_back(cells.back());
+        }
       }
     }
-    const double off_map = far * static_cast<double>(o.samples.size() - cells.size());
+    const std::size_t inner_samples = o.samples.size() >= 3 ? o.samples.size() - 2 : 0;
     terms.assign(o.field.size(), 0.0);
     for (std::size_t l = 0; l < o.field.size(); ++l) {
       const int field = o.field[l];
@@ -296,12 +303,15 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
       if (field != kNoField) {
         const DistanceField& distances =
             field == kFreeSpace ? free_space : *class_distances_[static_cast<std::size_t>(field)];
-        double sum = off_map;
-        for (const Cell& cell : cells) {
+        const bool inner = field == kFreeSpace && free_space_inside && inner_samples > 0;
+        const std::vector<Cell>& used = inner ? inner_cells : cells;
+        const std::size_t n = inner ? inner_samples : o.samples.size();
+        double sum = far * static_cast<double>(n - used.size());  // off the map
+        for (const Cell& cell : used) {
           // Fields saturate at or beyond `far` (also with no cell of the class at all).
           sum += std::min(static_cast<double>(distances.at(cell.x, cell.y)), far);
         }
-        d = sum / static_cast<double>(o.samples.size());
+        d = sum / static_cast<double>(n);
       }
       terms[l] = o.log_recognition[l] +
                  (d == far ? prior_at_far : log_map_prior(d, options_.slamer.prior_sigma, unmapped_probability));
@@ -316,7 +326,8 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
 
 double ParticleFilter::objects_weight(const Pose2& pose, const PreparedObjects& objects) const {
   return options_.mode == LocalizerMode::kSlamer
-             ? objects_log_likelihood(pose, objects, *free_distance_, options_.slamer.unmapped_probability, nullptr)
+             ? objects_log_likelihood(pose, objects, *free_distance_, options_.slamer.unmapped_probability, false,
+                                      nullptr)
              : 0.0;
 }
 
@@ -326,7 +337,7 @@ double ParticleFilter::object_log_likelihood(const Pose2& pose, const LineObject
   set.class_names = classes;
   set.objects = {object};
   return objects_log_likelihood(pose, prepare_objects(set), *free_distance_, options_.slamer.unmapped_probability,
-                                nullptr);
+                                false, nullptr);
 }
 
 double ParticleFilter::scan_log_likelihood(const Pose2& pose, const LaserScan& scan) const {
@@ -367,7 +378,8 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
       static_cast<std::size_t>(std::max_element(log_likelihood.begin(), log_likelihood.end()) - log_likelihood.begin());
   const Pose2 best_sensor = compose(particles_[best].pose, mount_);
   std::vector<std::vector<double>> class_terms;
-  objects_log_likelihood(particles_[best].pose, prepared_objects, *free_label_distance_, 0.0, &class_terms);
+  objects_log_likelihood(particles_[best].pose, prepared_objects, *free_label_distance_, 0.0,
+                         options_.slamer.free_space_inside, &class_terms);
   result.semantic.utime = scan.utime;
   result.semantic.seq = scan.seq;
   result.semantic.class_names = prepared_objects.class_names;

@@ -122,9 +122,11 @@ class ParticleFilter {
   PreparedObjects prepare_objects(const LineObjectSet& objects) const;
   double beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const;
   // `free_space`: the distances free-space classes are scored by (Eq. (7));
-  // `unmapped_probability`: Eq. (7)'s floor (log_map_prior).
+  // `unmapped_probability`: Eq. (7)'s floor (log_map_prior); `free_space_inside`:
+  // free space is scored by the samples between the object's ends only.
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects, const DistanceField& free_space,
-                                double unmapped_probability, std::vector<std::vector<double>>* class_terms) const;
+                                double unmapped_probability, bool free_space_inside,
+                                std::vector<std::vector<double>>* class_terms) const;
   // The objects' part of a particle's weight (Eq. (7) with its floor): SLAMER
   // only, 0 in the other modes. The tracked cloud and the challengers share it.
   double objects_weight(const Pose2& pose, const PreparedObjects& objects) const;
