@@ -2,8 +2,9 @@
 // paper's table per world (LFM, SLFM, SLAMER runs side by side), one line per
 // world and the aggregate (mean, and worst: the largest error, the lowest
 // accuracy), the per-class confusion matrices of the recognizer, the map-based
-// method and SLAMER summed over the worlds, and the map-differs cases apart
-// (objects whose true class differs from the map's; the doors that do).
+// method and SLAMER summed over the worlds, the shares of their objects
+// labelled a door or no_entry_line where there is none, and the map-differs
+// cases apart (objects whose true class differs from the map's; the doors that do).
 #pragma once
 
 #include <cstdint>
