@@ -280,7 +280,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   double total = 0.0;
   std::vector<double> terms;
   std::vector<Cell> cells;        // sample cells on the map; off-map samples are left out
-  std::vector<Cell> inner_cells;  // of the samples between the ends
+  std::vector<Cell> inner_cells;  // of the samples between the ends, if free_space_inside
   for (const PreparedObjects::Object& o : objects.objects) {
     cells.clear();
     inner_cells.clear();
@@ -290,7 +290,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
       const double gy = (s * p.x() + c * p.y() + grid.y) * to_cells;
       if (gx >= 0.0 && gy >= 0.0 && gx < geometry_.width && gy < geometry_.height) {
         cells.push_back({static_cast<int>(gx), static_cast<int>(gy)});
-        if (k > 0 && k + 1 < o.samples.size()) {
+        if (free_space_inside && k > 0 && k + 1 < o.samples.size()) {
           inner_cells.push_back(cells.back());
         }
       }
