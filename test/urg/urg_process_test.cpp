@@ -45,6 +45,7 @@ struct Bus {
     process_status_t status;
     if (decode_message(b->data, b->data_size, &status) == DecodeStatus::kOk && status.process == "slamer-urg") {
       self->statuses.push_back(status);
+      self->status_times.push_back(Clock::now());
     }
   }
   bool pump_until(const std::function<bool()>& done, double timeout_s) {
@@ -64,6 +65,7 @@ struct Bus {
   std::vector<laser_scan_t> scans;
   std::vector<Clock::time_point> scan_times;
   std::vector<process_status_t> statuses;
+  std::vector<Clock::time_point> status_times;
 };
 
 using test::free_port;
@@ -175,17 +177,39 @@ TEST(UrgProcess, SensorResetAndDownThenBack) {
   const std::string url = test::unique_lcm_url(4);
   Bus bus(url);
   int port = 0;
+  // The sensor closes the first connection 1.5 s after it opened and refuses connections for 1.5 s.
   auto sim = start_sim({"--model", "UST-10LX", "--drop-after", "1.5", "--down", "1.5"}, &port);
   auto driver = start_driver(url, port);
   ASSERT_TRUE(bus.pump_until([&] { return !bus.scans.empty(); }, 4.0)) << driver->stderr_text();
-  const auto start = bus.scan_times.front();
-  bus.pump_until([&] { return Clock::now() > start + std::chrono::milliseconds(1700); }, 4.0);
-  const std::size_t statuses = bus.statuses.size();
-  bus.pump_until([&] { return bus.statuses.size() > statuses; }, 2.0);
-  EXPECT_EQ(bus.statuses.back().state, process_status_t::DEGRADED) << bus.statuses.back().message;
-  const double back_in =
-      1.5 - std::chrono::duration<double>(Clock::now() - start - std::chrono::milliseconds(1500)).count();
-  expect_recovers(bus, std::max(back_in, 0.0), "reset");
+  // The outage is found in the scans themselves: the driver's handshake takes a varying time on a
+  // loaded machine, so the first scan says little about when the sensor dropped the connection.
+  auto gap_at = [&]() -> std::size_t {
+    for (std::size_t i = 1; i < bus.scan_times.size(); ++i) {
+      if (bus.scan_times[i] - bus.scan_times[i - 1] > std::chrono::milliseconds(500)) {
+        return i;
+      }
+    }
+    return 0;
+  };
+  ASSERT_TRUE(bus.pump_until([&] { return gap_at() > 0 && bus.scans.size() > gap_at() + 5; }, 9.0))
+      << "scans " << bus.scans.size() << "\n" << driver->stderr_text();
+  const std::size_t gap = gap_at();
+  const auto gap_start = bus.scan_times[gap - 1], gap_end = bus.scan_times[gap];
+  const double gap_s = std::chrono::duration<double>(gap_end - gap_start).count();
+  // The sensor was really unreachable, and scans came back within 2 s of it accepting connections
+  // again (1.5 s after its last scan).
+  EXPECT_GT(gap_s, 1.4);
+  EXPECT_LT(gap_s - 1.5, 2.0);
+  // While scans were missing the driver said so: some PROCESS_STATUS in the gap is DEGRADED.
+  bool degraded_in_gap = false;
+  std::string messages;
+  for (std::size_t i = 0; i < bus.statuses.size(); ++i) {
+    if (bus.status_times[i] > gap_start && bus.status_times[i] < gap_end) {
+      degraded_in_gap = degraded_in_gap || bus.statuses[i].state == process_status_t::DEGRADED;
+      messages += bus.statuses[i].message + "\n";
+    }
+  }
+  EXPECT_TRUE(degraded_in_gap) << "gap " << gap_s << " s; statuses in it:\n" << messages;
 }
 
 TEST(UrgProcess, SilentConnectionIsDroppedAndScansResume) {
@@ -195,15 +219,20 @@ TEST(UrgProcess, SilentConnectionIsDroppedAndScansResume) {
   auto sim = start_sim({"--model", "URM-40LC", "--silent-after", "1.0"}, &port);
   auto driver = start_driver(url, port);
   ASSERT_TRUE(bus.pump_until([&] { return bus.scans.size() > 10; }, 4.0)) << driver->stderr_text();
-  bus.pump_for(1.5);
-  // A gap of more than 3 periods happened, then scans again from the new connection.
-  bool gap = false;
-  for (std::size_t i = 1; i < bus.scan_times.size(); ++i) {
-    gap = gap || bus.scan_times[i] - bus.scan_times[i - 1] > std::chrono::milliseconds(75);
-  }
-  EXPECT_TRUE(gap);
-  const auto last = bus.scan_times.back();
-  EXPECT_LT(std::chrono::duration<double>(Clock::now() - last).count(), 0.5);
+  // A gap of more than 3 periods (the silent connection), then scans again from a new connection.
+  auto gap_at = [&]() -> std::size_t {
+    for (std::size_t i = 1; i < bus.scan_times.size(); ++i) {
+      if (bus.scan_times[i] - bus.scan_times[i - 1] > std::chrono::milliseconds(75)) {
+        return i;
+      }
+    }
+    return 0;
+  };
+  ASSERT_TRUE(bus.pump_until([&] { return gap_at() > 0 && bus.scans.size() > gap_at() + 5; }, 6.0))
+      << "scans " << bus.scans.size() << "\n" << driver->stderr_text();
+  // Silence is noticed within a few periods and the reconnection is quick: well under a second.
+  const double gap_s = std::chrono::duration<double>(bus.scan_times[gap_at()] - bus.scan_times[gap_at() - 1]).count();
+  EXPECT_LT(gap_s, 1.0);
 }
 
 TEST(UrgProcess, Scip11SensorIsSwitchedTo20) {
