@@ -43,6 +43,12 @@ std::string class_map_problem(const LocalizerOptions& options, const SemanticMap
              "); name one of them, or '' for free space";
     }
   }
+  for (const auto& [name, margin] : options.slamer.free_space_class_margins) {
+    if (map.class_index(name) < 0) {
+      return "key 'localizer.slamer.free_space_class_margins." + name + "': '" + name +
+             "' is not a class of the map (it has: " + join(map_classes) + ")";
+    }
+  }
   return "";
 }
 

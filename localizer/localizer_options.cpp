@@ -2,6 +2,8 @@
 
 #include "common/config/config_reader.hpp"
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 
 #include "common/robot/robot_options.hpp"
@@ -60,7 +62,17 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
   reader.read("dirichlet_a2", &o->dirichlet_a2, positive());
   reader.read("prior_sigma", &o->prior_sigma, positive());
   reader.read("free_space_margin", &o->free_space_margin, in_range(0.0, 2.0));
-  reader.read("free_space_inside", &o->free_space_inside);
+  if (reader.has("free_space_class_margins")) {
+    const ConfigReader margins = reader.section("free_space_class_margins");
+    o->free_space_class_margins.clear();
+    for (const std::string& name : margins.keys()) {
+      margins.read(name, &o->free_space_class_margins[name], in_range(0.01, 2.0));
+    }
+  }
+  const std::array<std::string, 3> ends = {"scored", "left_out_for_free_space", "left_out"};
+  std::string end_choice = ends[static_cast<std::size_t>(o->spatial_line_ends)];
+  reader.read_choice("spatial_line_ends", &end_choice, {ends[0], ends[1], ends[2]});
+  o->spatial_line_ends = static_cast<SpatialLineEnds>(std::find(ends.begin(), ends.end(), end_choice) - ends.begin());
   reader.read("unmapped_probability", &o->unmapped_probability, in_range(0.0, 0.99));
   reader.read("object_weight", &o->object_weight, in_range(0.0, 10.0));
   reader.read("object_samples", &o->object_samples, in_range(1, 50));

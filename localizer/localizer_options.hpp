@@ -16,6 +16,8 @@ namespace slamer {
 class ConfigReader;  // common/config/config_reader.hpp: the YAML reader stays out of this header
 
 enum class LocalizerMode { kLfm, kSlfm, kSlamer };
+// A spatial line's end samples in SLAMER's class posteriors (SlamerOptions).
+enum class SpatialLineEnds { kScored, kLeftOutForFreeSpace, kLeftOut };
 
 // Motion model (Eq. (5)): standard deviations of the odometry increment's
 // rotations and translation grow with the increment (Probabilistic Robotics
@@ -66,12 +68,24 @@ struct SlamerOptions {
   // door, and the prior cannot tell them apart. Not in the particle weights:
   // there it pulled the pose off doorways (README, "Calibrated across worlds").
   double free_space_margin = 0.45;
-  // In the class posteriors, free space's distance from the samples between the
-  // object's ends only: a spatial line's ends lie on the walls that bound its
-  // gap, never in free space, and with them a gap beside a mapped door was
-  // nearer the door than free space. Off: it halves the false doors but costs a
-  // third of the no-entry lines (README, "False doors").
-  bool free_space_inside = false;
+  // Map classes whose cells keep free space further off than free_space_margin
+  // [m] (class posteriors). A no-entry line is invisible: the spatial line the
+  // recognizer finds for it joins the corners of the walls it is anchored to,
+  // up to a wall's half thickness (0.15 m) beside the map's line, more with the
+  // pose error, where floor 0.45 m clear of it is only ~0.3 m away. 0.7 m is
+  // 0.45 m beyond such a line (from that geometry, not fitted).
+  std::map<std::string, double> free_space_class_margins = {{"no_entry_line", 0.7}};
+  // In the class posteriors, which samples of a spatial line score it. Its ends
+  // lie on whatever bounds its gap (walls, furniture, a door's frame), never in
+  // free space: with them, free space's distance across a gap between walls was
+  // ~0.3 m, and a gap beside a mapped door came out nearer the door than free
+  // space. kScored: every sample, every class (the paper). kLeftOutForFreeSpace:
+  // free space by the samples between the ends only, the other classes by all
+  // (any object). kLeftOut: every class by the samples between the ends
+  // (spatial lines only). Either alone costs a third of the no-entry lines;
+  // with no_entry_line's margin above, kLeftOut keeps them (README, "False
+  // doors"). The particle weights always score every sample.
+  SpatialLineEnds spatial_line_ends = SpatialLineEnds::kLeftOut;
   // Eq. (7) in the particle weights as a mixture: with this probability an
   // object is one the map lacks (furniture added, a door moved), whose prior
   // does not depend on the pose, as LFM's z_rand does for beams. Without it an

@@ -25,6 +25,22 @@ double field_reach(const LocalizerOptions& options) {
 
 }  // namespace
 
+namespace {
+
+// free_space_class_margins index-aligned with the map's classes (0: the common margin); a name the
+// map lacks has been refused by class_map_check.
+std::vector<double> class_margins(const SemanticMap& map, const LocalizerOptions& options) {
+  std::vector<double> margins(map.classes.size(), 0.0);
+  for (const auto& [name, margin] : options.slamer.free_space_class_margins) {
+    if (const int c = map.class_index(name); c >= 0) {
+      margins[static_cast<std::size_t>(c)] = margin;
+    }
+  }
+  return margins;
+}
+
+}  // namespace
+
 ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount)
     : options_(options),
       mount_(lidar_mount),
@@ -32,10 +48,11 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
       obstacles_(std::make_shared<const DistanceField>(obstacle_distance_field(map, field_reach(options)))),
       field_(obstacles_, options.lfm),
       free_distance_(std::make_shared<const DistanceField>(free_space_distance_field(map, field_reach(options)))),
-      free_label_distance_(options.slamer.free_space_margin > 0.0
-                               ? std::make_shared<const DistanceField>(free_space_distance_field(
-                                     map, field_reach(options), options.slamer.free_space_margin))
-                               : free_distance_),
+      free_label_distance_(
+          options.slamer.free_space_margin > 0.0 || !options.slamer.free_space_class_margins.empty()
+              ? std::make_shared<const DistanceField>(free_space_distance_field(
+                    map, field_reach(options), options.slamer.free_space_margin, class_margins(map, options)))
+              : free_distance_),
       proposals_(std::make_shared<const GlobalProposals>(free_distance_, obstacles_, kClearance)),
       rng_(static_cast<std::mt19937::result_type>(options.seed)),
       correction_(options.motion.odometry_correction_memory),
@@ -260,9 +277,23 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
   return options_.lfm.beam_weight * sum;
 }
 
+namespace {
+
+// The mean distance of `n` samples, those off the map (not in `cells`) at `far`;
+// fields saturate at or beyond `far` (also with no cell of the class at all).
+double mean_distance(const DistanceField& distances, const std::vector<Cell>& cells, std::size_t n, double far) {
+  double sum = far * static_cast<double>(n - cells.size());
+  for (const Cell& cell : cells) {
+    sum += std::min(static_cast<double>(distances.at(cell.x, cell.y)), far);
+  }
+  return sum / static_cast<double>(n);
+}
+
+}  // namespace
+
 double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
                                               const DistanceField& free_space, double unmapped_probability,
-                                              bool free_space_inside,
+                                              SpatialLineEnds spatial_line_ends,
                                               std::vector<std::vector<double>>* class_terms) const {
   // The sensor pose in grid cells: one transform per particle.
   const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
@@ -280,7 +311,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   double total = 0.0;
   std::vector<double> terms;
   std::vector<Cell> cells;        // sample cells on the map; off-map samples are left out
-  std::vector<Cell> inner_cells;  // of the samples between the ends, if free_space_inside
+  std::vector<Cell> inner_cells;  // of the samples between the ends, if they may be used
   for (const PreparedObjects::Object& o : objects.objects) {
     cells.clear();
     inner_cells.clear();
@@ -290,7 +321,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
       const double gy = (s * p.x() + c * p.y() + grid.y) * to_cells;
       if (gx >= 0.0 && gy >= 0.0 && gx < geometry_.width && gy < geometry_.height) {
         cells.push_back({static_cast<int>(gx), static_cast<int>(gy)});
-        if (free_space_inside && k > 0 && k + 1 < o.samples.size()) {
+        if (spatial_line_ends != SpatialLineEnds::kScored && k > 0 && k + 1 < o.samples.size()) {
           inner_cells.push_back(cells.back());
         }
       }
@@ -303,15 +334,11 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
       if (field != kNoField) {
         const DistanceField& distances =
             field == kFreeSpace ? free_space : *class_distances_[static_cast<std::size_t>(field)];
-        const bool inner = field == kFreeSpace && free_space_inside && inner_samples > 0;
-        const std::vector<Cell>& used = inner ? inner_cells : cells;
-        const std::size_t n = inner ? inner_samples : o.samples.size();
-        double sum = far * static_cast<double>(n - used.size());  // off the map
-        for (const Cell& cell : used) {
-          // Fields saturate at or beyond `far` (also with no cell of the class at all).
-          sum += std::min(static_cast<double>(distances.at(cell.x, cell.y)), far);
-        }
-        d = sum / static_cast<double>(n);
+        const bool spatial = o.object.kind == LineKind::kSpatial;
+        const bool inner = inner_samples > 0 && (spatial_line_ends == SpatialLineEnds::kLeftOutForFreeSpace
+                                                     ? field == kFreeSpace
+                                                     : spatial_line_ends == SpatialLineEnds::kLeftOut && spatial);
+        d = mean_distance(distances, inner ? inner_cells : cells, inner ? inner_samples : o.samples.size(), far);
       }
       terms[l] = o.log_recognition[l] +
                  (d == far ? prior_at_far : log_map_prior(d, options_.slamer.prior_sigma, unmapped_probability));
@@ -326,8 +353,8 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
 
 double ParticleFilter::objects_weight(const Pose2& pose, const PreparedObjects& objects) const {
   return options_.mode == LocalizerMode::kSlamer
-             ? objects_log_likelihood(pose, objects, *free_distance_, options_.slamer.unmapped_probability, false,
-                                      nullptr)
+             ? objects_log_likelihood(pose, objects, *free_distance_, options_.slamer.unmapped_probability,
+                                      SpatialLineEnds::kScored, nullptr)
              : 0.0;
 }
 
@@ -337,7 +364,7 @@ double ParticleFilter::object_log_likelihood(const Pose2& pose, const LineObject
   set.class_names = classes;
   set.objects = {object};
   return objects_log_likelihood(pose, prepare_objects(set), *free_distance_, options_.slamer.unmapped_probability,
-                                false, nullptr);
+                                SpatialLineEnds::kScored, nullptr);
 }
 
 double ParticleFilter::scan_log_likelihood(const Pose2& pose, const LaserScan& scan) const {
@@ -379,7 +406,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   const Pose2 best_sensor = compose(particles_[best].pose, mount_);
   std::vector<std::vector<double>> class_terms;
   objects_log_likelihood(particles_[best].pose, prepared_objects, *free_label_distance_, 0.0,
-                         options_.slamer.free_space_inside, &class_terms);
+                         options_.slamer.spatial_line_ends, &class_terms);
   result.semantic.utime = scan.utime;
   result.semantic.seq = scan.seq;
   result.semantic.class_names = prepared_objects.class_names;

@@ -122,10 +122,10 @@ class ParticleFilter {
   PreparedObjects prepare_objects(const LineObjectSet& objects) const;
   double beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const;
   // `free_space`: the distances free-space classes are scored by (Eq. (7));
-  // `unmapped_probability`: Eq. (7)'s floor (log_map_prior); `free_space_inside`:
-  // free space is scored by the samples between the object's ends only.
+  // `unmapped_probability`: Eq. (7)'s floor (log_map_prior); `spatial_line_ends`:
+  // which classes leave out the end samples (SlamerOptions).
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects, const DistanceField& free_space,
-                                double unmapped_probability, bool free_space_inside,
+                                double unmapped_probability, SpatialLineEnds spatial_line_ends,
                                 std::vector<std::vector<double>>* class_terms) const;
   // The objects' part of a particle's weight (Eq. (7) with its floor): SLAMER
   // only, 0 in the other modes. The tracked cloud and the challengers share it.

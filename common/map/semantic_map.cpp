@@ -4,9 +4,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <utility>
 
 #include "common/config/config_reader.hpp"
 
@@ -348,17 +350,36 @@ std::vector<DistanceField> class_distance_fields(const SemanticMap& map, double 
   return fields;
 }
 
-DistanceField free_space_distance_field(const SemanticMap& map, double max_distance, double class_margin) {
+DistanceField free_space_distance_field(const SemanticMap& map, double max_distance, double class_margin,
+                                        const std::vector<double>& class_margins) {
   const auto free_of_class = [&](std::size_t i) { return map.occupancy[i] == Occupancy::kFree && map.labels[i] < 0; };
-  if (class_margin <= 0.0) {
+  const auto margin_of = [&](std::size_t c) {
+    return c < class_margins.size() && class_margins[c] > 0.0 ? class_margins[c] : class_margin;
+  };
+  // One field for the classes at the common margin, one for each class with a margin of its own;
+  // each reaches a step beyond its margin so that "more than the margin" is not lost to its levels.
+  std::vector<std::pair<DistanceField, double>> to_classes;
+  const auto add = [&](double margin, const std::function<bool(int8_t)>& counts) {
+    if (margin > 0.0) {
+      to_classes.emplace_back(field_of(map, margin + map.geometry.resolution,
+                                       [&](std::size_t i) { return map.labels[i] >= 0 && counts(map.labels[i]); }),
+                              margin);
+    }
+  };
+  add(class_margin, [&](int8_t label) { return margin_of(static_cast<std::size_t>(label)) == class_margin; });
+  for (std::size_t c = 0; c < map.classes.size(); ++c) {
+    if (margin_of(c) != class_margin) {
+      add(margin_of(c), [&](int8_t label) { return static_cast<std::size_t>(label) == c; });
+    }
+  }
+  if (to_classes.empty()) {
     return field_of(map, max_distance, free_of_class);
   }
-  // A step beyond the margin so that "more than class_margin" is not lost to the field's levels.
-  const DistanceField to_class =
-      field_of(map, class_margin + map.geometry.resolution, [&](std::size_t i) { return map.labels[i] >= 0; });
   const auto width = static_cast<std::size_t>(map.geometry.width);
   return field_of(map, max_distance, [&](std::size_t i) {
-    return free_of_class(i) && to_class.at(static_cast<int>(i % width), static_cast<int>(i / width)) > class_margin;
+    const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
+    return free_of_class(i) && std::all_of(to_classes.begin(), to_classes.end(),
+                                           [&](const auto& field) { return field.first.at(x, y) > field.second; });
   });
 }
 

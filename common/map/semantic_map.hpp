@@ -55,9 +55,11 @@ SemanticMap load_semantic_map(const std::string& yaml_path);
 // Distance [m], up to max_distance, to the nearest occupied cell; to the
 // nearest cell of each class (index-aligned with map.classes); to the nearest
 // free cell of no class that lies more than `class_margin` from every cell of a
-// class (0: any free cell of no class).
+// class (0: any free cell of no class), or more than `class_margins[c]` from a
+// cell of class c where that is given (index-aligned with map.classes, > 0).
 DistanceField obstacle_distance_field(const SemanticMap& map, double max_distance);
 std::vector<DistanceField> class_distance_fields(const SemanticMap& map, double max_distance);
-DistanceField free_space_distance_field(const SemanticMap& map, double max_distance, double class_margin = 0.0);
+DistanceField free_space_distance_field(const SemanticMap& map, double max_distance, double class_margin = 0.0,
+                                        const std::vector<double>& class_margins = {});
 
 }  // namespace slamer

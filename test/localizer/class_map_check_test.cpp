@@ -111,6 +111,7 @@ TEST(ClassMapCheck, AMapClassTheMapDoesNotDeclareIsOneLineNamingTheKey) {
   // '' (free space) needs no map class; an entry may map to any class the map has.
   LocalizerOptions custom = options;
   custom.slamer.class_map = {{"free_space", ""}, {"others", "others"}};
+  custom.slamer.free_space_class_margins.clear();  // the default's no_entry_line is not in this map either
   EXPECT_EQ(class_map_problem(custom, room({"others"})), "");
   // Options built in code are held to recognition_classes as well.
   custom.slamer.class_map["wall"] = "others";
@@ -118,6 +119,30 @@ TEST(ClassMapCheck, AMapClassTheMapDoesNotDeclareIsOneLineNamingTheKey) {
             "key 'localizer.slamer.class_map.wall': 'wall' is not a class the recognizer emits "
             "(recognition_classes: open_door, closed_door, open_glass_door, closed_glass_door, fence, "
             "no_entry_line, free_space, others)");
+}
+
+// free_space_class_margins names map classes too: a name the map lacks would
+// silently keep free space off nothing; a margin must be positive.
+TEST(ClassMapCheck, AFreeSpaceClassMarginForAClassTheMapLacksIsOneLineNamingTheKey) {
+  LocalizerOptions options = small_filter(LocalizerMode::kSlamer);
+  options.slamer.free_space_class_margins = {{"no_entry_line", 0.7}};
+  EXPECT_EQ(class_map_problem(options, room(kPaperMapClasses)), "");
+  options.slamer.free_space_class_margins = {{"wall", 0.7}};
+  EXPECT_EQ(class_map_problem(options, room(kPaperMapClasses)),
+            "key 'localizer.slamer.free_space_class_margins.wall': 'wall' is not a class of the map (it has: door, "
+            "glass_door, fence, no_entry_line, others)");
+  const auto config = parse_options<LocalizerProcessConfig>(
+      "localizer:\n  slamer:\n    free_space_class_margins: {no_entry_line: 0.7, door: 0.3}\n"
+      "    spatial_line_ends: left_out\n",
+      "loc.yaml");
+  EXPECT_EQ(config.localizer.slamer.free_space_class_margins,
+            (std::map<std::string, double>{{"door", 0.3}, {"no_entry_line", 0.7}}));
+  EXPECT_EQ(config.localizer.slamer.spatial_line_ends, SpatialLineEnds::kLeftOut);
+  EXPECT_NE(config_error("localizer:\n  slamer:\n    free_space_class_margins: {no_entry_line: 0}\n")
+                .find("free_space_class_margins.no_entry_line"),
+            std::string::npos);
+  EXPECT_NE(config_error("localizer:\n  slamer:\n    spatial_line_ends: sometimes\n").find("spatial_line_ends"),
+            std::string::npos);
 }
 
 TEST(ClassMapCheck, OnlyTheModesThatUseClassesAreChecked) {

@@ -256,7 +256,7 @@ TEST(ParticleFilter, FreeSpaceIsScoredBetweenTheEndsOfAGapSoAGapBetweenWallsIsFr
     LocalizerOptions options;
     options.mode = LocalizerMode::kSlamer;
     options.particles = 50;
-    options.slamer.free_space_inside = inside;
+    options.slamer.spatial_line_ends = inside ? SpatialLineEnds::kLeftOutForFreeSpace : SpatialLineEnds::kScored;
     ParticleFilter filter(w.map, options, w.robot.lidar.mount);
     filter.initialize(truth, {0.01, 0.01, 0.005});
     LineObjectSet objects;
@@ -284,6 +284,108 @@ TEST(ParticleFilter, FreeSpaceIsScoredBetweenTheEndsOfAGapSoAGapBetweenWallsIsFr
     const std::vector<float> p = posterior(inside, doorway);
     EXPECT_GT(p[index("open_door")], p[index("free_space")]) << "inside " << inside;
   }
+}
+
+// kLeftOut scores every class of a spatial line by the samples between its ends:
+// the gap between walls is free space, and the doorway, whose middle lies on
+// the map's door, stays an open door. Physical lines keep their ends.
+TEST(ParticleFilter, SpatialLinesEndsLeftOutAGapBetweenWallsIsFreeSpaceAndTheDoorwayADoor) {
+  const SmallWorld w;
+  const std::vector<std::string> classes = RecognizerOptions{}.classes;
+  const auto index = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(classes.begin(), classes.end(), name) - classes.begin());
+  };
+  const Pose2 truth{3.0, 3.0, kPi / 2};
+  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
+  const auto line = [&](LineKind kind, const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+    LineObject l;
+    l.kind = kind;
+    l.start = transform_point(inverse(sensor), from);
+    l.end = transform_point(inverse(sensor), to);
+    l.probs.assign(classes.size(), 0.01f);
+    l.probs[index("free_space")] = 0.39f;
+    l.probs[index("open_door")] = 0.55f;
+    return l;
+  };
+  const auto posterior = [&](SpatialLineEnds ends, const LineObject& l) {
+    LocalizerOptions options;
+    options.mode = LocalizerMode::kSlamer;
+    options.particles = 50;
+    options.slamer.spatial_line_ends = ends;
+    ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+    filter.initialize(truth, {0.01, 0.01, 0.005});
+    LineObjectSet objects;
+    objects.class_names = classes;
+    objects.objects = {l};
+    const UpdateResult result = filter.update(w.scan_at(truth), &objects);
+    EXPECT_EQ(result.semantic.objects.size(), 1u);
+    return result.semantic.objects.at(0).probs;
+  };
+  const auto free_vs_door = [&](const std::vector<float>& p) {
+    return std::log(static_cast<double>(p[index("free_space")]) / static_cast<double>(p[index("open_door")]));
+  };
+  // Across the left room at y 4.5, wall to wall; the recognizer leans to open door.
+  const LineObject gap = line(LineKind::kSpatial, {0.05, 4.5}, {5.95, 4.5});
+  const std::vector<float> scored = posterior(SpatialLineEnds::kScored, gap);
+  const std::vector<float> left_out = posterior(SpatialLineEnds::kLeftOut, gap);
+  EXPECT_GT(free_vs_door(left_out) - free_vs_door(scored), 1.5);  // the ends 0.43 m from clear floor
+  EXPECT_GT(left_out[index("free_space")], 0.9f);
+  // The same line as a physical one keeps its ends: nothing changes.
+  const LineObject physical = line(LineKind::kPhysical, {0.05, 4.5}, {5.95, 4.5});
+  EXPECT_NEAR(free_vs_door(posterior(SpatialLineEnds::kLeftOut, physical)),
+              free_vs_door(posterior(SpatialLineEnds::kScored, physical)), 1e-4);
+  // The doorway between the rooms (the map's door, y 2.5..3.5 at x 6) stays a door.
+  const std::vector<float> doorway =
+      posterior(SpatialLineEnds::kLeftOut, line(LineKind::kSpatial, {6.0, 2.55}, {6.0, 3.45}));
+  EXPECT_LT(free_vs_door(doorway), -1.0);
+}
+
+// A no-entry line is invisible, so its recognized line lies where the walls it
+// is anchored to end, beside the map's line. 0.25 m beside it, floor 0.45 m
+// clear of it is as near as the line itself and the recognizer's free space
+// wins; with a margin of 0.7 m for no-entry lines the map's line does. Far from
+// it the same object is free space either way.
+TEST(ParticleFilter, AMarginOfItsOwnForNoEntryLinesHoldsALineBesideTheMapsOne) {
+  const SmallWorld w;
+  const std::vector<std::string> classes = RecognizerOptions{}.classes;
+  const auto index = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(classes.begin(), classes.end(), name) - classes.begin());
+  };
+  const Pose2 truth{8.0, 3.0, kPi / 2};  // facing the no-entry line (7..9, 5)
+  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
+  const auto labelled = [&](const LocalizerOptions& options, double y) {
+    LineObject gap;
+    gap.kind = LineKind::kSpatial;
+    gap.start = transform_point(inverse(sensor), {7.2, y});
+    gap.end = transform_point(inverse(sensor), {8.8, y});
+    gap.probs.assign(classes.size(), 0.004f);
+    gap.probs[index("free_space")] = 0.97f;
+    gap.probs[index("no_entry_line")] = 0.003f;
+    LineObjectSet objects;
+    objects.class_names = classes;
+    objects.objects = {gap};
+    ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+    filter.initialize(truth, {0.01, 0.01, 0.005});
+    const UpdateResult result = filter.update(w.scan_at(truth), &objects);
+    EXPECT_EQ(result.semantic.objects.size(), 1u);
+    const std::vector<float>& p = result.semantic.objects.at(0).probs;
+    return classes[static_cast<std::size_t>(std::max_element(p.begin(), p.end()) - p.begin())];
+  };
+  LocalizerOptions options;
+  options.mode = LocalizerMode::kSlamer;
+  options.particles = 50;
+  for (const std::string& name : classes) {
+    options.slamer.training_prior[name] = 0.03;
+  }
+  options.slamer.training_prior["free_space"] = 0.27;
+  options.slamer.training_prior["no_entry_line"] = 0.002;
+  options.slamer.training_prior["others"] = 0.59;
+  options.slamer.free_space_class_margins.clear();
+  EXPECT_EQ(labelled(options, 5.0), "no_entry_line");
+  EXPECT_EQ(labelled(options, 4.75), "free_space");
+  options.slamer.free_space_class_margins["no_entry_line"] = 0.7;
+  EXPECT_EQ(labelled(options, 4.75), "no_entry_line");
+  EXPECT_EQ(labelled(options, 3.8), "free_space");
 }
 
 TEST(RecognitionModel, TheTrainingPriorIsDividedOutAndTheResultNormalized) {

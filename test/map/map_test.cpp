@@ -287,6 +287,41 @@ TEST(SemanticMap, FreeSpaceWithAMarginStaysClearOfClassedCells) {
   EXPECT_NEAR(clear.at(0, 0), 0.0, 1e-6);
 }
 
+// The same strip with a door across it at x = 2.0 m as well: a margin of the
+// no-entry line's own keeps free space further from it, the door keeps the
+// common one.
+TEST(SemanticMap, AClassWithAMarginOfItsOwnKeepsFreeSpaceThatFarOff) {
+  SemanticMap map;
+  map.geometry.width = 30;
+  map.geometry.height = 5;
+  map.geometry.resolution = 0.1;
+  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
+  map.labels.assign(map.geometry.size(), -1);
+  map.classes.push_back({"no_entry_line", {255, 0, 0}});
+  map.classes.push_back({"door", {255, 0, 255}});
+  for (int y = 0; y < 5; ++y) {
+    map.labels[map.geometry.index(10, y)] = 0;
+    map.labels[map.geometry.index(20, y)] = 1;
+  }
+  const DistanceField common = free_space_distance_field(map, 2.55, 0.25, {});
+  const DistanceField own = free_space_distance_field(map, 2.55, 0.25, {0.45, 0.0});
+  // Common 0.25 m: free from 0.3 m off either line (cells 7, 13, 17, 23).
+  EXPECT_NEAR(common.at(10, 2), 0.3, 0.006);
+  EXPECT_NEAR(common.at(7, 2), 0.0, 1e-6);
+  EXPECT_NEAR(common.at(13, 2), 0.0, 1e-6);
+  // 0.45 m for the no-entry line: free from 0.5 m off it (cells 5 and 15), the door's unchanged.
+  EXPECT_NEAR(own.at(10, 2), 0.5, 0.006);
+  EXPECT_NEAR(own.at(7, 2), 0.2, 0.006);
+  EXPECT_NEAR(own.at(15, 2), 0.0, 1e-6);
+  EXPECT_NEAR(own.at(20, 2), 0.3, 0.006);
+  EXPECT_NEAR(own.at(17, 2), 0.0, 1e-6);
+  // A margin of its own without a common one still keeps free space off that class only.
+  const DistanceField only = free_space_distance_field(map, 2.55, 0.0, {0.25, 0.0});
+  EXPECT_NEAR(only.at(10, 2), 0.3, 0.006);
+  EXPECT_NEAR(only.at(19, 2), 0.0, 1e-6);
+  EXPECT_NEAR(only.at(20, 2), 0.1, 0.006);
+}
+
 TEST(SemanticMap, IsmYamlFormat) {
   TempDir dir;
   write_occupancy_pgm(dir.file("ogm.pgm"));
