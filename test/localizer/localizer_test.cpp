@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "localizer/motion_model.hpp"
@@ -173,59 +174,123 @@ TEST(LocalizerOptions, UnmappedProbabilityIsAProbabilityBelowOne) {
   }
 }
 
+// SLAMER's class posterior of one object, given by its ends in the map frame,
+// from a filter settled at `truth` in the small world.
+class ObjectPosterior {
+ public:
+  explicit ObjectPosterior(const Pose2& truth) : truth_(truth), sensor_(compose(truth, w_.robot.lidar.mount)) {}
+
+  std::size_t index(const std::string& name) const {
+    return static_cast<std::size_t>(std::find(classes_.begin(), classes_.end(), name) - classes_.begin());
+  }
+  // The recognizer's probabilities: `probs` for the classes named, `rest` for the others.
+  LineObject object(LineKind kind, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                    const std::map<std::string, float>& probs, float rest) const {
+    LineObject o;
+    o.kind = kind;
+    o.start = transform_point(inverse(sensor_), from);
+    o.end = transform_point(inverse(sensor_), to);
+    o.probs.assign(classes_.size(), rest);
+    for (const auto& [name, p] : probs) {
+      o.probs[index(name)] = p;
+    }
+    return o;
+  }
+  std::vector<float> posterior(const LocalizerOptions& options, const LineObject& o) const {
+    ParticleFilter filter(w_.map, options, w_.robot.lidar.mount);
+    filter.initialize(truth_, {0.01, 0.01, 0.005});
+    LineObjectSet objects;
+    objects.class_names = classes_;
+    objects.objects = {o};
+    const UpdateResult result = filter.update(w_.scan_at(truth_), &objects);
+    EXPECT_EQ(result.semantic.objects.size(), 1u);
+    return result.semantic.objects.at(0).probs;
+  }
+  std::string label(const LocalizerOptions& options, const LineObject& o) const {
+    const std::vector<float> p = posterior(options, o);
+    return classes_[static_cast<std::size_t>(std::max_element(p.begin(), p.end()) - p.begin())];
+  }
+  double log_odds(const std::vector<float>& p, const char* a, const char* b) const {
+    return std::log(static_cast<double>(p[index(a)]) / static_cast<double>(p[index(b)]));
+  }
+
+ private:
+  const SmallWorld w_;
+  const std::vector<std::string> classes_ = RecognizerOptions{}.classes;
+  const Pose2 truth_;
+  const Pose2 sensor_;
+};
+
+LocalizerOptions slamer_filter(SpatialLineEnds ends) {
+  LocalizerOptions options;
+  options.mode = LocalizerMode::kSlamer;
+  options.particles = 50;
+  options.slamer.spatial_line_ends = ends;
+  return options;
+}
+
+// The training prior much as the shipped one: no-entry lines rare, free space common.
+void set_training_prior(LocalizerOptions* options) {
+  for (const std::string& name : RecognizerOptions{}.classes) {
+    options->slamer.training_prior[name] = 0.03;
+  }
+  options->slamer.training_prior["free_space"] = 0.27;
+  options->slamer.training_prior["no_entry_line"] = 0.002;
+  options->slamer.training_prior["others"] = 0.59;
+}
+
+// A spatial line from x 7.2 to 8.8 at height y, seen facing the small room's no-entry line (7..9, 5);
+// the recognizer cannot see such a line and says free space.
+LineObject across_the_no_entry_line(const ObjectPosterior& f, double y) {
+  return f.object(LineKind::kSpatial, {7.2, y}, {8.8, y}, {{"free_space", 0.97f}, {"no_entry_line", 0.003f}}, 0.004f);
+}
+constexpr Pose2 kFacingTheNoEntryLine{8.0, 3.0, kPi / 2};
+
 // The recognizer cannot see a no-entry line: over the gap it says free space
 // (0.97), and no-entry line only at 0.003 because such lines were rare where it
 // was fitted. With that training prior divided out (Eq. (8) is given the
 // likelihood, the map prior takes the prior's place), the map's no-entry line
 // decides; without it the same object stays free space.
 TEST(ParticleFilter, AnObjectOnTheMapsNoEntryLineIsOneOnceTheTrainingPriorIsDividedOut) {
-  const SmallWorld w;
-  const std::vector<std::string> classes = RecognizerOptions{}.classes;
-  const Pose2 truth{8.0, 3.0, kPi / 2};  // facing the no-entry line (7..9, 5)
-  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
-  LineObjectSet objects;
-  objects.class_names = classes;
-  LineObject gap;
-  gap.kind = LineKind::kSpatial;
-  gap.start = transform_point(inverse(sensor), {7.2, 5.0});
-  gap.end = transform_point(inverse(sensor), {8.8, 5.0});
-  gap.probs.assign(classes.size(), 0.004f);
-  const auto index = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(classes.begin(), classes.end(), name) - classes.begin());
-  };
-  gap.probs[index("free_space")] = 0.97f;
-  gap.probs[index("no_entry_line")] = 0.003f;
-  objects.objects = {gap};
-  const auto labelled = [&](const LocalizerOptions& options) {
-    ParticleFilter filter(w.map, options, w.robot.lidar.mount);
-    filter.initialize(truth, {0.01, 0.01, 0.005});
-    const UpdateResult result = filter.update(w.scan_at(truth), &objects);
-    EXPECT_EQ(result.semantic.objects.size(), 1u);
-    const std::vector<float>& p = result.semantic.objects.at(0).probs;
-    return classes[static_cast<std::size_t>(std::max_element(p.begin(), p.end()) - p.begin())];
-  };
-  LocalizerOptions options;
-  options.mode = LocalizerMode::kSlamer;
-  options.particles = 50;
+  const ObjectPosterior f(kFacingTheNoEntryLine);
+  LocalizerOptions options = slamer_filter(SpatialLineEnds::kScored);
   options.slamer.training_prior.clear();
-  EXPECT_EQ(labelled(options), "free_space");
-  for (const std::string& name : classes) {
-    options.slamer.training_prior[name] = 0.03;
-  }
-  options.slamer.training_prior["free_space"] = 0.27;
-  options.slamer.training_prior["no_entry_line"] = 0.002;
-  options.slamer.training_prior["others"] = 0.59;
-  EXPECT_EQ(labelled(options), "no_entry_line");
+  EXPECT_EQ(f.label(options, across_the_no_entry_line(f, 5.0)), "free_space");
+  set_training_prior(&options);
+  EXPECT_EQ(f.label(options, across_the_no_entry_line(f, 5.0)), "no_entry_line");
   // Raised to the power 0 the prior divides nothing out.
   options.slamer.training_prior_exponent = 0.0;
-  EXPECT_EQ(labelled(options), "free_space");
+  EXPECT_EQ(f.label(options, across_the_no_entry_line(f, 5.0)), "free_space");
   options.slamer.training_prior_exponent = 1.0;
   // Elsewhere, on free floor far from any classed cell, the same object is free space still.
-  gap.start = transform_point(inverse(sensor), {7.2, 3.8});
-  gap.end = transform_point(inverse(sensor), {8.8, 3.8});
-  objects.objects = {gap};
-  EXPECT_EQ(labelled(options), "free_space");
+  EXPECT_EQ(f.label(options, across_the_no_entry_line(f, 3.8)), "free_space");
 }
+
+// A no-entry line is invisible, so its recognized line lies where the walls it
+// is anchored to end, beside the map's line. 0.25 m beside it, floor 0.45 m
+// clear of it is as near as the line itself and the recognizer's free space
+// wins; with a margin of 0.7 m for no-entry lines the map's line does. Far from
+// it the same object is free space either way.
+TEST(ParticleFilter, AMarginOfItsOwnForNoEntryLinesHoldsALineBesideTheMapsOne) {
+  const ObjectPosterior f(kFacingTheNoEntryLine);
+  for (const SpatialLineEnds ends : {SpatialLineEnds::kScored, SpatialLineEnds::kLeftOut}) {
+    LocalizerOptions options = slamer_filter(ends);
+    set_training_prior(&options);
+    options.slamer.free_space_class_margins.clear();
+    EXPECT_EQ(f.label(options, across_the_no_entry_line(f, 5.0)), "no_entry_line");
+    EXPECT_EQ(f.label(options, across_the_no_entry_line(f, 4.75)), "free_space");
+    options.slamer.free_space_class_margins["no_entry_line"] = 0.7;
+    EXPECT_EQ(f.label(options, across_the_no_entry_line(f, 4.75)), "no_entry_line");
+    EXPECT_EQ(f.label(options, across_the_no_entry_line(f, 3.8)), "free_space");
+  }
+}
+
+// Seen from the left room's middle: a spatial line across the room at y 4.5, from
+// its left wall to the wall between the rooms, and the doorway between the rooms
+// (the map's door, y 2.5..3.5 at x 6).
+constexpr Pose2 kLeftRoom{3.0, 3.0, kPi / 2};
+const Eigen::Vector2d kGapFrom{0.05, 4.5}, kGapTo{5.95, 4.5};
+const Eigen::Vector2d kDoorwayFrom{6.0, 2.55}, kDoorwayTo{6.0, 3.45};
 
 // A spatial line's ends lie on the walls that bound its gap, never in free space.
 // Scored with them, free space's representative distance across an open floor
@@ -235,157 +300,41 @@ TEST(ParticleFilter, AnObjectOnTheMapsNoEntryLineIsOneOnceTheTrainingPriorIsDivi
 // gains d^2 / (2 sigma^2), at most 2 nats, against every other class, whose
 // terms do not change; a doorway's middle lies on the door, so it stays a door.
 TEST(ParticleFilter, FreeSpaceIsScoredBetweenTheEndsOfAGapSoAGapBetweenWallsIsFreeSpace) {
-  const SmallWorld w;
-  const std::vector<std::string> classes = RecognizerOptions{}.classes;
-  const auto index = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(classes.begin(), classes.end(), name) - classes.begin());
-  };
-  const Pose2 truth{3.0, 3.0, kPi / 2};
-  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
-  const auto spatial_line = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
-    LineObject line;
-    line.kind = LineKind::kSpatial;
-    line.start = transform_point(inverse(sensor), from);
-    line.end = transform_point(inverse(sensor), to);
-    line.probs.assign(classes.size(), 0.01f);
-    line.probs[index("free_space")] = 0.55f;
-    line.probs[index("open_door")] = 0.39f;
-    return line;
-  };
-  const auto posterior = [&](bool inside, const LineObject& line) {
-    LocalizerOptions options;
-    options.mode = LocalizerMode::kSlamer;
-    options.particles = 50;
-    options.slamer.spatial_line_ends = inside ? SpatialLineEnds::kLeftOutForFreeSpace : SpatialLineEnds::kScored;
-    ParticleFilter filter(w.map, options, w.robot.lidar.mount);
-    filter.initialize(truth, {0.01, 0.01, 0.005});
-    LineObjectSet objects;
-    objects.class_names = classes;
-    objects.objects = {line};
-    const UpdateResult result = filter.update(w.scan_at(truth), &objects);
-    EXPECT_EQ(result.semantic.objects.size(), 1u);
-    return result.semantic.objects.at(0).probs;
-  };
-  // Across the left room, from its left wall to the wall between the rooms (above the door).
-  const LineObject gap = spatial_line({0.05, 4.5}, {5.95, 4.5});
-  const std::vector<float> before = posterior(false, gap);
-  const std::vector<float> after = posterior(true, gap);
-  const auto log_odds = [&](const std::vector<float>& p, const char* a, const char* b) {
-    return std::log(static_cast<double>(p[index(a)]) / static_cast<double>(p[index(b)]));
-  };
-  const double gain = log_odds(after, "free_space", "others") - log_odds(before, "free_space", "others");
+  const ObjectPosterior f(kLeftRoom);
+  const std::map<std::string, float> leaning_free{{"free_space", 0.55f}, {"open_door", 0.39f}};
+  const LineObject gap = f.object(LineKind::kSpatial, kGapFrom, kGapTo, leaning_free, 0.01f);
+  const std::vector<float> before = f.posterior(slamer_filter(SpatialLineEnds::kScored), gap);
+  const std::vector<float> after = f.posterior(slamer_filter(SpatialLineEnds::kLeftOutForFreeSpace), gap);
+  const double gain = f.log_odds(after, "free_space", "others") - f.log_odds(before, "free_space", "others");
   EXPECT_GT(gain, 1.5);  // 1.79: the ends 0.43 m from clear floor
   EXPECT_LE(gain, 2.0 + 1e-4);
-  EXPECT_NEAR(log_odds(after, "open_door", "others"), log_odds(before, "open_door", "others"), 1e-4);
-  EXPECT_GT(after[index("free_space")], 0.9f);
-  // The doorway between the rooms (the map's door, y 2.5..3.5 at x 6): a door either way.
-  const LineObject doorway = spatial_line({6.0, 2.55}, {6.0, 3.45});
-  for (const bool inside : {false, true}) {
-    const std::vector<float> p = posterior(inside, doorway);
-    EXPECT_GT(p[index("open_door")], p[index("free_space")]) << "inside " << inside;
+  EXPECT_NEAR(f.log_odds(after, "open_door", "others"), f.log_odds(before, "open_door", "others"), 1e-4);
+  EXPECT_GT(after[f.index("free_space")], 0.9f);
+  const LineObject doorway = f.object(LineKind::kSpatial, kDoorwayFrom, kDoorwayTo, leaning_free, 0.01f);
+  for (const SpatialLineEnds ends : {SpatialLineEnds::kScored, SpatialLineEnds::kLeftOutForFreeSpace}) {
+    const std::vector<float> p = f.posterior(slamer_filter(ends), doorway);
+    EXPECT_GT(p[f.index("open_door")], p[f.index("free_space")]) << static_cast<int>(ends);
   }
 }
 
 // kLeftOut scores every class of a spatial line by the samples between its ends:
-// the gap between walls is free space, and the doorway, whose middle lies on
-// the map's door, stays an open door. Physical lines keep their ends.
+// the gap between walls is free space even where the recognizer leans to a door,
+// and the doorway, whose middle lies on the map's door, stays an open door.
+// Physical lines keep their ends.
 TEST(ParticleFilter, SpatialLinesEndsLeftOutAGapBetweenWallsIsFreeSpaceAndTheDoorwayADoor) {
-  const SmallWorld w;
-  const std::vector<std::string> classes = RecognizerOptions{}.classes;
-  const auto index = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(classes.begin(), classes.end(), name) - classes.begin());
-  };
-  const Pose2 truth{3.0, 3.0, kPi / 2};
-  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
-  const auto line = [&](LineKind kind, const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
-    LineObject l;
-    l.kind = kind;
-    l.start = transform_point(inverse(sensor), from);
-    l.end = transform_point(inverse(sensor), to);
-    l.probs.assign(classes.size(), 0.01f);
-    l.probs[index("free_space")] = 0.39f;
-    l.probs[index("open_door")] = 0.55f;
-    return l;
-  };
-  const auto posterior = [&](SpatialLineEnds ends, const LineObject& l) {
-    LocalizerOptions options;
-    options.mode = LocalizerMode::kSlamer;
-    options.particles = 50;
-    options.slamer.spatial_line_ends = ends;
-    ParticleFilter filter(w.map, options, w.robot.lidar.mount);
-    filter.initialize(truth, {0.01, 0.01, 0.005});
-    LineObjectSet objects;
-    objects.class_names = classes;
-    objects.objects = {l};
-    const UpdateResult result = filter.update(w.scan_at(truth), &objects);
-    EXPECT_EQ(result.semantic.objects.size(), 1u);
-    return result.semantic.objects.at(0).probs;
-  };
-  const auto free_vs_door = [&](const std::vector<float>& p) {
-    return std::log(static_cast<double>(p[index("free_space")]) / static_cast<double>(p[index("open_door")]));
-  };
-  // Across the left room at y 4.5, wall to wall; the recognizer leans to open door.
-  const LineObject gap = line(LineKind::kSpatial, {0.05, 4.5}, {5.95, 4.5});
-  const std::vector<float> scored = posterior(SpatialLineEnds::kScored, gap);
-  const std::vector<float> left_out = posterior(SpatialLineEnds::kLeftOut, gap);
+  const ObjectPosterior f(kLeftRoom);
+  const std::map<std::string, float> leaning_door{{"free_space", 0.39f}, {"open_door", 0.55f}};
+  const auto free_vs_door = [&](const std::vector<float>& p) { return f.log_odds(p, "free_space", "open_door"); };
+  const LineObject gap = f.object(LineKind::kSpatial, kGapFrom, kGapTo, leaning_door, 0.01f);
+  const std::vector<float> scored = f.posterior(slamer_filter(SpatialLineEnds::kScored), gap);
+  const std::vector<float> left_out = f.posterior(slamer_filter(SpatialLineEnds::kLeftOut), gap);
   EXPECT_GT(free_vs_door(left_out) - free_vs_door(scored), 1.5);  // the ends 0.43 m from clear floor
-  EXPECT_GT(left_out[index("free_space")], 0.9f);
-  // The same line as a physical one keeps its ends: nothing changes.
-  const LineObject physical = line(LineKind::kPhysical, {0.05, 4.5}, {5.95, 4.5});
-  EXPECT_NEAR(free_vs_door(posterior(SpatialLineEnds::kLeftOut, physical)),
-              free_vs_door(posterior(SpatialLineEnds::kScored, physical)), 1e-4);
-  // The doorway between the rooms (the map's door, y 2.5..3.5 at x 6) stays a door.
-  const std::vector<float> doorway =
-      posterior(SpatialLineEnds::kLeftOut, line(LineKind::kSpatial, {6.0, 2.55}, {6.0, 3.45}));
-  EXPECT_LT(free_vs_door(doorway), -1.0);
-}
-
-// A no-entry line is invisible, so its recognized line lies where the walls it
-// is anchored to end, beside the map's line. 0.25 m beside it, floor 0.45 m
-// clear of it is as near as the line itself and the recognizer's free space
-// wins; with a margin of 0.7 m for no-entry lines the map's line does. Far from
-// it the same object is free space either way.
-TEST(ParticleFilter, AMarginOfItsOwnForNoEntryLinesHoldsALineBesideTheMapsOne) {
-  const SmallWorld w;
-  const std::vector<std::string> classes = RecognizerOptions{}.classes;
-  const auto index = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(classes.begin(), classes.end(), name) - classes.begin());
-  };
-  const Pose2 truth{8.0, 3.0, kPi / 2};  // facing the no-entry line (7..9, 5)
-  const Pose2 sensor = compose(truth, w.robot.lidar.mount);
-  const auto labelled = [&](const LocalizerOptions& options, double y) {
-    LineObject gap;
-    gap.kind = LineKind::kSpatial;
-    gap.start = transform_point(inverse(sensor), {7.2, y});
-    gap.end = transform_point(inverse(sensor), {8.8, y});
-    gap.probs.assign(classes.size(), 0.004f);
-    gap.probs[index("free_space")] = 0.97f;
-    gap.probs[index("no_entry_line")] = 0.003f;
-    LineObjectSet objects;
-    objects.class_names = classes;
-    objects.objects = {gap};
-    ParticleFilter filter(w.map, options, w.robot.lidar.mount);
-    filter.initialize(truth, {0.01, 0.01, 0.005});
-    const UpdateResult result = filter.update(w.scan_at(truth), &objects);
-    EXPECT_EQ(result.semantic.objects.size(), 1u);
-    const std::vector<float>& p = result.semantic.objects.at(0).probs;
-    return classes[static_cast<std::size_t>(std::max_element(p.begin(), p.end()) - p.begin())];
-  };
-  LocalizerOptions options;
-  options.mode = LocalizerMode::kSlamer;
-  options.particles = 50;
-  for (const std::string& name : classes) {
-    options.slamer.training_prior[name] = 0.03;
-  }
-  options.slamer.training_prior["free_space"] = 0.27;
-  options.slamer.training_prior["no_entry_line"] = 0.002;
-  options.slamer.training_prior["others"] = 0.59;
-  options.slamer.free_space_class_margins.clear();
-  EXPECT_EQ(labelled(options, 5.0), "no_entry_line");
-  EXPECT_EQ(labelled(options, 4.75), "free_space");
-  options.slamer.free_space_class_margins["no_entry_line"] = 0.7;
-  EXPECT_EQ(labelled(options, 4.75), "no_entry_line");
-  EXPECT_EQ(labelled(options, 3.8), "free_space");
+  EXPECT_GT(left_out[f.index("free_space")], 0.9f);
+  const LineObject physical = f.object(LineKind::kPhysical, kGapFrom, kGapTo, leaning_door, 0.01f);
+  EXPECT_NEAR(free_vs_door(f.posterior(slamer_filter(SpatialLineEnds::kLeftOut), physical)),
+              free_vs_door(f.posterior(slamer_filter(SpatialLineEnds::kScored), physical)), 1e-4);
+  const LineObject doorway = f.object(LineKind::kSpatial, kDoorwayFrom, kDoorwayTo, leaning_door, 0.01f);
+  EXPECT_LT(free_vs_door(f.posterior(slamer_filter(SpatialLineEnds::kLeftOut), doorway)), -1.0);
 }
 
 TEST(RecognitionModel, TheTrainingPriorIsDividedOutAndTheResultNormalized) {

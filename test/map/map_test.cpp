@@ -263,8 +263,9 @@ TEST(SemanticMap, SemanticLayerWithClassTable) {
   EXPECT_NEAR(free.at(0, 2), 0.1, 1e-6);  // the door, next to free (1, 2)
 }
 
-// A free 3 m x 0.5 m strip at 0.1 m with a no-entry line across it at x = 1.0 m.
-TEST(SemanticMap, FreeSpaceWithAMarginStaysClearOfClassedCells) {
+// A free 3 m x 0.5 m strip at 0.1 m with a no-entry line across it at x = 1.0 m
+// and, with `door`, a door across it at x = 2.0 m.
+SemanticMap strip(bool door) {
   SemanticMap map;
   map.geometry.width = 30;
   map.geometry.height = 5;
@@ -272,9 +273,20 @@ TEST(SemanticMap, FreeSpaceWithAMarginStaysClearOfClassedCells) {
   map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
   map.labels.assign(map.geometry.size(), -1);
   map.classes.push_back({"no_entry_line", {255, 0, 0}});
+  if (door) {
+    map.classes.push_back({"door", {255, 0, 255}});
+  }
   for (int y = 0; y < 5; ++y) {
     map.labels[map.geometry.index(10, y)] = 0;
+    if (door) {
+      map.labels[map.geometry.index(20, y)] = 1;
+    }
   }
+  return map;
+}
+
+TEST(SemanticMap, FreeSpaceWithAMarginStaysClearOfClassedCells) {
+  const SemanticMap map = strip(false);
   const DistanceField adjacent = free_space_distance_field(map, 2.55);
   EXPECT_NEAR(adjacent.at(10, 2), 0.1, 0.006);  // the line is one cell from free space
   EXPECT_NEAR(adjacent.at(12, 2), 0.0, 1e-6);
@@ -287,22 +299,10 @@ TEST(SemanticMap, FreeSpaceWithAMarginStaysClearOfClassedCells) {
   EXPECT_NEAR(clear.at(0, 0), 0.0, 1e-6);
 }
 
-// The same strip with a door across it at x = 2.0 m as well: a margin of the
-// no-entry line's own keeps free space further from it, the door keeps the
-// common one.
+// The strip with its door: a margin of the no-entry line's own keeps free space
+// further from it, the door keeps the common one.
 TEST(SemanticMap, AClassWithAMarginOfItsOwnKeepsFreeSpaceThatFarOff) {
-  SemanticMap map;
-  map.geometry.width = 30;
-  map.geometry.height = 5;
-  map.geometry.resolution = 0.1;
-  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
-  map.labels.assign(map.geometry.size(), -1);
-  map.classes.push_back({"no_entry_line", {255, 0, 0}});
-  map.classes.push_back({"door", {255, 0, 255}});
-  for (int y = 0; y < 5; ++y) {
-    map.labels[map.geometry.index(10, y)] = 0;
-    map.labels[map.geometry.index(20, y)] = 1;
-  }
+  const SemanticMap map = strip(true);
   const DistanceField common = free_space_distance_field(map, 2.55, 0.25, {});
   const DistanceField own = free_space_distance_field(map, 2.55, 0.25, {0.45, 0.0});
   // Common 0.25 m: free from 0.3 m off either line (cells 7, 13, 17, 23).

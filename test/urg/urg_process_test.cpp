@@ -61,6 +61,15 @@ struct Bus {
   void pump_for(double seconds) {
     pump_until([] { return false; }, seconds);
   }
+  // The index of the first scan after a gap longer than `gap`, 0 if none yet.
+  std::size_t first_after_gap(std::chrono::milliseconds gap) const {
+    for (std::size_t i = 1; i < scan_times.size(); ++i) {
+      if (scan_times[i] - scan_times[i - 1] > gap) {
+        return i;
+      }
+    }
+    return 0;
+  }
   lcm::LCM lcm;
   std::vector<laser_scan_t> scans;
   std::vector<Clock::time_point> scan_times;
@@ -183,16 +192,10 @@ TEST(UrgProcess, SensorResetAndDownThenBack) {
   ASSERT_TRUE(bus.pump_until([&] { return !bus.scans.empty(); }, 4.0)) << driver->stderr_text();
   // The outage is found in the scans themselves: the driver's handshake takes a varying time on a
   // loaded machine, so the first scan says little about when the sensor dropped the connection.
-  auto gap_at = [&]() -> std::size_t {
-    for (std::size_t i = 1; i < bus.scan_times.size(); ++i) {
-      if (bus.scan_times[i] - bus.scan_times[i - 1] > std::chrono::milliseconds(500)) {
-        return i;
-      }
-    }
-    return 0;
-  };
+  const auto gap_at = [&] { return bus.first_after_gap(std::chrono::milliseconds(500)); };
   ASSERT_TRUE(bus.pump_until([&] { return gap_at() > 0 && bus.scans.size() > gap_at() + 5; }, 9.0))
-      << "scans " << bus.scans.size() << "\n" << driver->stderr_text();
+      << "scans " << bus.scans.size() << "\n"
+      << driver->stderr_text();
   const std::size_t gap = gap_at();
   const auto gap_start = bus.scan_times[gap - 1], gap_end = bus.scan_times[gap];
   const double gap_s = std::chrono::duration<double>(gap_end - gap_start).count();
@@ -220,16 +223,10 @@ TEST(UrgProcess, SilentConnectionIsDroppedAndScansResume) {
   auto driver = start_driver(url, port);
   ASSERT_TRUE(bus.pump_until([&] { return bus.scans.size() > 10; }, 4.0)) << driver->stderr_text();
   // A gap of more than 3 periods (the silent connection), then scans again from a new connection.
-  auto gap_at = [&]() -> std::size_t {
-    for (std::size_t i = 1; i < bus.scan_times.size(); ++i) {
-      if (bus.scan_times[i] - bus.scan_times[i - 1] > std::chrono::milliseconds(75)) {
-        return i;
-      }
-    }
-    return 0;
-  };
+  const auto gap_at = [&] { return bus.first_after_gap(std::chrono::milliseconds(75)); };
   ASSERT_TRUE(bus.pump_until([&] { return gap_at() > 0 && bus.scans.size() > gap_at() + 5; }, 6.0))
-      << "scans " << bus.scans.size() << "\n" << driver->stderr_text();
+      << "scans " << bus.scans.size() << "\n"
+      << driver->stderr_text();
   // Silence is noticed within a few periods and the reconnection is quick: well under a second.
   const double gap_s = std::chrono::duration<double>(bus.scan_times[gap_at()] - bus.scan_times[gap_at() - 1]).count();
   EXPECT_LT(gap_s, 1.0);
