@@ -23,10 +23,6 @@ double field_reach(const LocalizerOptions& options) {
   return std::max(likelihood_field_reach(options.lfm), 3.0 * options.slamer.prior_sigma);
 }
 
-}  // namespace
-
-namespace {
-
 // free_space_class_margins index-aligned with the map's classes (0: the common margin); a name the
 // map lacks has been refused by class_map_check.
 std::vector<double> class_margins(const SemanticMap& map, const LocalizerOptions& options) {
@@ -37,6 +33,16 @@ std::vector<double> class_margins(const SemanticMap& map, const LocalizerOptions
     }
   }
   return margins;
+}
+
+// The mean distance of `n` samples, those off the map (not in `cells`) at `far`;
+// fields saturate at or beyond `far` (also with no cell of the class at all).
+double mean_distance(const DistanceField& distances, const std::vector<Cell>& cells, std::size_t n, double far) {
+  double sum = far * static_cast<double>(n - cells.size());
+  for (const Cell& cell : cells) {
+    sum += std::min(static_cast<double>(distances.at(cell.x, cell.y)), far);
+  }
+  return sum / static_cast<double>(n);
 }
 
 }  // namespace
@@ -276,20 +282,6 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
   }
   return options_.lfm.beam_weight * sum;
 }
-
-namespace {
-
-// The mean distance of `n` samples, those off the map (not in `cells`) at `far`;
-// fields saturate at or beyond `far` (also with no cell of the class at all).
-double mean_distance(const DistanceField& distances, const std::vector<Cell>& cells, std::size_t n, double far) {
-  double sum = far * static_cast<double>(n - cells.size());
-  for (const Cell& cell : cells) {
-    sum += std::min(static_cast<double>(distances.at(cell.x, cell.y)), far);
-  }
-  return sum / static_cast<double>(n);
-}
-
-}  // namespace
 
 double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
                                               const DistanceField& free_space, double unmapped_probability,
