@@ -159,6 +159,7 @@ void read_options(const ConfigReader& reader, RecoveryOptions* o) {
   reader.read("fraction", &o->fraction, probability());
   reader.read("adopt_time", &o->adopt_time, in_range(0.0, 60.0));
   reader.read("adopt_margin", &o->adopt_margin, probability());
+  reader.read("probation_time", &o->probation_time, in_range(0.0, 600.0));
   read_options(reader.section("local"), &o->local);
 }
 

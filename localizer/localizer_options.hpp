@@ -184,6 +184,13 @@ struct RecoveryOptions {
   double fraction = 0.1;      // of the particles
   double adopt_time = 2.0;    // [s]
   double adopt_margin = 0.1;  // scan fit
+  // Probation after the cloud moved to the challengers' place: in a building
+  // of look-alike places their first find may be the wrong one. For this long
+  // the status is UNCERTAIN while the challengers search the rest of the map;
+  // then it stays UNCERTAIN as long as they hold a rival (a place away from
+  // the estimate that fits as a correct pose does and within adopt_margin as
+  // well). The cloud is never moved on probation: the status only (0: none).
+  double probation_time = 20.0;  // [s]
   LocalMatchOptions local;
   bool operator==(const RecoveryOptions&) const = default;
 };

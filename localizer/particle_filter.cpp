@@ -61,6 +61,7 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
               : free_distance_),
       proposals_(std::make_shared<const GlobalProposals>(free_distance_, obstacles_, kClearance)),
       rng_(static_cast<std::mt19937::result_type>(options.seed)),
+      challenger_rng_(static_cast<std::mt19937::result_type>(options.seed) ^ 0x9e3779b9u),
       correction_(options.motion.odometry_correction_memory),
       agreement_(options.status.odometry_disagreement > 0.0 ? options.status.odometry_disagreement_time : 0.0,
                  options.status.odometry_disagreement_distance) {
@@ -117,6 +118,10 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   confirm_scans_seen_ = -1;
   noise_gain_ = 1.0;
   end_challenge();
+  probation_until_.reset();
+  jumped_ = false;
+  unconfirmed_until_.reset();
+  unconfirmed_ = false;
   increment_.reset();
   last_pose_.reset();  // the learned correction stays: it belongs to the robot, not the pose
   agreement_.reset();
@@ -137,7 +142,8 @@ void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
     p.pose = sample_motion(p.pose, u, options_.motion, rng_, noise_gain_);
   }
   for (Particle& c : challengers_) {
-    c.pose = sample_motion(c.pose, u, options_.motion, rng_, noise_gain_);
+    // They search: a zero increment (the robot standing) still moves them about.
+    c.pose = sample_motion(c.pose, u, options_.motion, challenger_rng_, options_.motion.noise_gain_max);
   }
   if (challenger_track_) {
     challenger_track_ = compose(*challenger_track_, between(odom_from, odom_to));
@@ -154,10 +160,10 @@ void ParticleFilter::diffuse(double seconds) {
   odometry_forward_.reset();
   const double position = options_.motion.no_odometry_speed * seconds;
   const double heading = options_.motion.no_odometry_turn_rate * seconds;
-  for (std::vector<Particle>* set : {&particles_, &challengers_}) {
+  for (auto [set, rng] : {std::pair{&particles_, &rng_}, std::pair{&challengers_, &challenger_rng_}}) {
     for (Particle& p : *set) {
-      p.pose = {p.pose.x + position * standard(rng_), p.pose.y + position * standard(rng_),
-                wrap_angle(p.pose.theta + heading * standard(rng_))};
+      p.pose = {p.pose.x + position * standard(*rng), p.pose.y + position * standard(*rng),
+                wrap_angle(p.pose.theta + heading * standard(*rng))};
     }
   }
 }
@@ -426,11 +432,15 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   if (used_beams > 0) {
     update_fit(result.fit, result.estimate, scan.utime);
   }
-  if (!global_ && (lost_ || searching_) && options_.recovery.adopt_time > 0.0) {
+  // On probation after a search: until its time is over and no rival is left.
+  const bool probation = probation_until_ && (scan.utime < *probation_until_ || rival_);
+  if (!global_ && (lost_ || searching_ || probation) && options_.recovery.adopt_time > 0.0) {
     compete(beams, prepared_objects, scan.utime, &result);
   } else {
     end_challenge();
+    probation_until_.reset();
   }
+  unconfirmed_ = unconfirmed_until_ && scan.utime < *unconfirmed_until_;
   // A jump the filter made on purpose (adopting the challengers' place,
   // global proposals) is no disagreement with the odometry: start over.
   if (result.adopted || global_) {
@@ -508,10 +518,10 @@ void ParticleFilter::normalize(std::vector<Particle>* set) {
 }
 
 void ParticleFilter::resample() {
-  particles_ = resampled(particles_, particles_.size());
+  particles_ = resampled(particles_, particles_.size(), rng_);
 }
 
-std::vector<Particle> ParticleFilter::resampled(const std::vector<Particle>& set, std::size_t n) {
+std::vector<Particle> ParticleFilter::resampled(const std::vector<Particle>& set, std::size_t n, std::mt19937& rng) {
   // Systematic (low-variance) resampling: one random offset, n evenly spaced
   // pointers into the normalized weights of `set`.
   std::vector<Particle> next;
@@ -519,7 +529,7 @@ std::vector<Particle> ParticleFilter::resampled(const std::vector<Particle>& set
     return next;
   }
   std::uniform_real_distribution<double> offset(0.0, 1.0 / static_cast<double>(n));
-  double pointer = offset(rng_);
+  double pointer = offset(rng);
   double cumulative = std::exp(set[0].log_weight);
   std::size_t source = 0;
   next.reserve(n);

@@ -23,7 +23,10 @@
 // for recovery.adopt_time (a kidnapping prior), so the filter relocalizes by
 // itself without jumping to a look-alike place a single scan favours; it says
 // OK again only once the scans fit as well as at a correct pose
-// (status.fit_confirm). It says UNCERTAIN while the estimate has lately moved
+// (status.fit_confirm); after moving there it stays UNCERTAIN for
+// recovery.probation_time while the challengers look for another place that
+// fits about as well, and as long as they hold one. It says UNCERTAIN while
+// the estimate has lately moved
 // along its heading far from what the odometry measured (a slide the fit
 // cannot show; odometry_agreement.hpp).
 #pragma once
@@ -134,7 +137,7 @@ class ParticleFilter {
   // `set`'s log weights normalized to sum to one (in linear space).
   static void normalize(std::vector<Particle>* set);
   // `n` draws from `set` (normalized) by systematic resampling, weights uniform.
-  std::vector<Particle> resampled(const std::vector<Particle>& set, std::size_t n);
+  std::vector<Particle> resampled(const std::vector<Particle>& set, std::size_t n, std::mt19937& rng);
   void inject(const ScanPoints& points, UpdateResult* result);
   // While LOST with a tracked cloud (particle_filter_challengers.cpp): global
   // proposals in a cloud of their own, adopted only once one place has fitted
@@ -173,6 +176,9 @@ class ParticleFilter {
   std::shared_ptr<const GlobalProposals> proposals_;
   std::vector<Particle> particles_;
   std::mt19937 rng_;
+  // The challengers' draws (compete()): the tracked cloud's are then the same
+  // whether or not they run, so probation changes the status only.
+  std::mt19937 challenger_rng_;
   int low_likelihood_scans_ = 0;
   bool updated_ = false;
   // Scan-fit state (issue 9).
@@ -200,6 +206,17 @@ class ParticleFilter {
   double challenger_fit_ = 0.0;
   double challenger_held_ = 0.0;  // [s]
   std::optional<int64_t> challenger_utime_;
+  // After a search that moved the cloud ended (recovery.probation_time): until
+  // when the challengers go on, and whether their place is a rival of the
+  // estimate at this scan.
+  std::optional<int64_t> probation_until_;
+  bool rival_ = false;
+  // The search moved the cloud to the challengers' place (a place the tracked
+  // cloud did not find by itself): probation when the search ends, UNCERTAIN
+  // until unconfirmed_until_.
+  bool jumped_ = false;
+  std::optional<int64_t> unconfirmed_until_;
+  bool unconfirmed_ = false;  // at this scan
   OdometryCorrection correction_;
   std::optional<OdometryIncrement> increment_;  // odometry since the last update (raw), for the correction
   // The estimate at the last update: the turn the correction learns and the

@@ -69,6 +69,12 @@ ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bo
   if (searching_) {
     return {kUncertain, "searching after lost: the scans do not yet fit as at a right pose"};
   }
+  if (unconfirmed_) {
+    return {kUncertain, "the place a search found, not yet checked against the rest of the map"};
+  }
+  if (rival_) {
+    return {kUncertain, "another place of the map fits the scans about as well"};
+  }
   if (confirm_scans_seen_ >= 0) {
     return {kUncertain, "a resumed pose the scans have not confirmed yet"};
   }
@@ -117,6 +123,11 @@ void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime
     global_ = false;
     searching_ = false;
     fit_sustained_ = fit_smoothed_;  // the confirmation is the evidence so far
+    if (jumped_ && options_.recovery.probation_time > 0.0) {
+      probation_until_ = utime + static_cast<int64_t>(options_.recovery.probation_time * 1e6);
+      unconfirmed_until_ = probation_until_;
+    }
+    jumped_ = false;
   }
   if (confirm_scans_seen_ >= 0) {
     ++confirm_scans_seen_;
