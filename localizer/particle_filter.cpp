@@ -118,9 +118,8 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   confirm_scans_seen_ = -1;
   noise_gain_ = 1.0;
   end_challenge();
-  probation_until_.reset();
   jumped_ = false;
-  unconfirmed_until_.reset();
+  probation_until_.reset();
   unconfirmed_ = false;
   increment_.reset();
   last_pose_.reset();  // the learned correction stays: it belongs to the robot, not the pose
@@ -432,7 +431,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   if (used_beams > 0) {
     update_fit(result.fit, result.estimate, scan.utime);
   }
-  // On probation after a search: until its time is over and no rival is left.
+  // On probation after an adoption: until its time is over and no rival is left.
   const bool probation = probation_until_ && (scan.utime < *probation_until_ || rival_);
   if (!global_ && (lost_ || searching_ || probation) && options_.recovery.adopt_time > 0.0) {
     compete(beams, prepared_objects, scan.utime, &result);
@@ -440,7 +439,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
     end_challenge();
     probation_until_.reset();
   }
-  unconfirmed_ = unconfirmed_until_ && scan.utime < *unconfirmed_until_;
+  unconfirmed_ = probation_until_ && scan.utime < *probation_until_;
   // A jump the filter made on purpose (adopting the challengers' place,
   // global proposals) is no disagreement with the odometry: start over.
   if (result.adopted || global_) {

@@ -26,9 +26,8 @@
 // (status.fit_confirm); after moving there it stays UNCERTAIN for
 // recovery.probation_time while the challengers look for another place that
 // fits about as well, and as long as they hold one. It says UNCERTAIN while
-// the estimate has lately moved
-// along its heading far from what the odometry measured (a slide the fit
-// cannot show; odometry_agreement.hpp).
+// the estimate has lately moved along its heading far from what the odometry
+// measured (a slide the fit cannot show; odometry_agreement.hpp).
 #pragma once
 
 #include <memory>
@@ -177,7 +176,8 @@ class ParticleFilter {
   std::vector<Particle> particles_;
   std::mt19937 rng_;
   // The challengers' draws (compete()): the tracked cloud's are then the same
-  // whether or not they run, so probation changes the status only.
+  // whether or not they run, so probation changes the status (and, through
+  // it, what the odometry correction learns from) only.
   std::mt19937 challenger_rng_;
   int low_likelihood_scans_ = 0;
   bool updated_ = false;
@@ -206,17 +206,14 @@ class ParticleFilter {
   double challenger_fit_ = 0.0;
   double challenger_held_ = 0.0;  // [s]
   std::optional<int64_t> challenger_utime_;
-  // After a search that moved the cloud ended (recovery.probation_time): until
-  // when the challengers go on, and whether their place is a rival of the
-  // estimate at this scan.
-  std::optional<int64_t> probation_until_;
-  bool rival_ = false;
   // The search moved the cloud to the challengers' place (a place the tracked
-  // cloud did not find by itself): probation when the search ends, UNCERTAIN
-  // until unconfirmed_until_.
+  // cloud did not find by itself): probation once it ends
+  // (recovery.probation_time), UNCERTAIN until probation_until_ and while the
+  // challengers, going on, hold a rival of the estimate.
   bool jumped_ = false;
-  std::optional<int64_t> unconfirmed_until_;
-  bool unconfirmed_ = false;  // at this scan
+  std::optional<int64_t> probation_until_;
+  bool unconfirmed_ = false;  // this scan is before probation_until_
+  bool rival_ = false;
   OdometryCorrection correction_;
   std::optional<OdometryIncrement> increment_;  // odometry since the last update (raw), for the correction
   // The estimate at the last update: the turn the correction learns and the

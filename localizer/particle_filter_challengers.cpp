@@ -71,7 +71,7 @@ void ParticleFilter::compete(const PreparedScan& beams, const PreparedObjects& o
   const int fresh = challengers_.empty() ? static_cast<int>(size) : std::max(1, static_cast<int>(size) / kFreshShare);
   std::vector<Pose2> poses = proposals_->propose(field_, beams.points, mount_, options_.recovery.candidates, fresh,
                                                  kProposalBeams, challenger_rng_);
-  // On probation (tracking again after a search) they look for another place
+  // On probation (tracking again after an adoption) they look for another place
   // than the estimate's: there they would only follow the tracked cloud.
   const Pose2& tracked = result->estimate.pose;
   const auto apart = [](const Pose2& a, const Pose2& b) {

@@ -125,7 +125,6 @@ void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime
     fit_sustained_ = fit_smoothed_;  // the confirmation is the evidence so far
     if (jumped_ && options_.recovery.probation_time > 0.0) {
       probation_until_ = utime + static_cast<int64_t>(options_.recovery.probation_time * 1e6);
-      unconfirmed_until_ = probation_until_;
     }
     jumped_ = false;
   }
