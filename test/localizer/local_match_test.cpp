@@ -40,23 +40,6 @@ TEST_F(LocalMatchTest, FindsThePoseFromAPredictionOffByAFailingOdometrysError) {
   }
 }
 
-// A map at 5 cm of `width` x `height` cells, occupied where `occupied(x, y)`.
-template <typename Occupied>
-SemanticMap grid_map(int width, int height, Occupied occupied) {
-  SemanticMap map;
-  map.geometry.width = width;
-  map.geometry.height = height;
-  map.geometry.resolution = 0.05;
-  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
-  map.labels.assign(map.geometry.size(), -1);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      map.occupancy[map.geometry.index(x, y)] = occupied(x, y) ? Occupancy::kOccupied : Occupancy::kFree;
-    }
-  }
-  return map;
-}
-
 // A corridor with posts every 0.4 m along both walls: a scan there fits every
 // 0.4 m. The runner-up is the next such place, not the best one's shoulder,
 // and it fits about as well (what makes the filter put particles at both).

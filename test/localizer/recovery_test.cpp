@@ -130,20 +130,9 @@ TEST(Recovery, KidnappedTheCloudMovesToTheNewPlaceAboutTheAdoptTimeAfterLost) {
 // 1.5 m block fills its far corner (an L-shaped room). Without it the room
 // looks the same from (x, y, theta) and from its half turn about the centre.
 SemanticMap room(bool corner_block) {
-  SemanticMap map;
-  map.geometry.width = 120;
-  map.geometry.height = 60;
-  map.geometry.resolution = 0.05;
-  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
-  map.labels.assign(map.geometry.size(), -1);
-  for (int y = 0; y < 60; ++y) {
-    for (int x = 0; x < 120; ++x) {
-      const bool wall = x == 0 || x == 119 || y == 0 || y == 59;
-      const bool block = corner_block && x >= 80 && y >= 30;
-      map.occupancy[map.geometry.index(x, y)] = wall || block ? Occupancy::kOccupied : Occupancy::kFree;
-    }
-  }
-  return map;
+  return grid_map(120, 60, [corner_block](int x, int y) {
+    return x == 0 || x == 119 || y == 0 || y == 59 || (corner_block && x >= 80 && y >= 30);
+  });
 }
 
 // A 270 deg, 541-beam scan from `pose` (the sensor at the base), marched through the grid.

@@ -41,6 +41,23 @@ struct SmallWorld {
   LaserScan scan_at(const Pose2& pose) const { return simulated_scan(world, robot, pose); }
 };
 
+// A map at 5 cm of `width` x `height` cells with no classes, occupied where `occupied(x, y)`.
+template <typename Occupied>
+SemanticMap grid_map(int width, int height, Occupied occupied) {
+  SemanticMap map;
+  map.geometry.width = width;
+  map.geometry.height = height;
+  map.geometry.resolution = 0.05;
+  map.occupancy.assign(map.geometry.size(), Occupancy::kFree);
+  map.labels.assign(map.geometry.size(), -1);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      map.occupancy[map.geometry.index(x, y)] = occupied(x, y) ? Occupancy::kOccupied : Occupancy::kFree;
+    }
+  }
+  return map;
+}
+
 // A scan's returns (not max range) as end points in the sensor frame, in cells of `resolution`.
 inline ScanPoints end_points(const LaserScan& scan, double resolution) {
   ScanPoints points;
