@@ -4,6 +4,8 @@
 // The robot stands still in the small room; for a while the scans are those
 // of another place in the room (the other room's corner, 6.6 m away): for
 // 1 s that is a look-alike place that fits for a moment, for 6 s a kidnapping.
+// Then the probation after an adoption, in a 6 m x 3 m room: L-shaped, no
+// other place looks alike; plain, its half turn does (a rival).
 #include <gtest/gtest.h>
 
 #include <cmath>
