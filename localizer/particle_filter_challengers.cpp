@@ -51,6 +51,11 @@ constexpr int kFreshShare = 5;  // 1/5 of the challengers replaced each scan: th
 constexpr double kSamePlaceShift = 0.5;  // [m]
 constexpr double kSamePlaceTurn = 0.3;   // [rad]
 constexpr double kMaxScanGap = 0.5;      // [s] a 2 Hz scanner's period
+
+// One place: within the cloud's own spread of each other.
+bool close_by(const Pose2& a, const Pose2& b) {
+  return std::hypot(a.x - b.x, a.y - b.y) < kSamePlaceShift && std::abs(angle_diff(a.theta, b.theta)) < kSamePlaceTurn;
+}
 }  // namespace
 
 void ParticleFilter::end_challenge() {
@@ -74,14 +79,10 @@ void ParticleFilter::compete(const PreparedScan& beams, const PreparedObjects& o
   // On probation (tracking again after an adoption) they look for another place
   // than the estimate's: there they would only follow the tracked cloud.
   const Pose2& tracked = result->estimate.pose;
-  const auto apart = [](const Pose2& a, const Pose2& b) {
-    return std::hypot(a.x - b.x, a.y - b.y) >= kSamePlaceShift ||
-           std::abs(angle_diff(a.theta, b.theta)) >= kSamePlaceTurn;
-  };
   const bool probation = !lost_ && !searching_;
   if (probation) {
-    std::erase_if(poses, [&](const Pose2& p) { return !apart(p, tracked); });
-    std::erase_if(challengers_, [&](const Particle& c) { return !apart(c.pose, tracked); });
+    std::erase_if(poses, [&](const Pose2& p) { return close_by(p, tracked); });
+    std::erase_if(challengers_, [&](const Particle& c) { return close_by(c.pose, tracked); });
   }
   const double joining =
       challengers_.empty()
@@ -112,10 +113,7 @@ void ParticleFilter::compete(const PreparedScan& beams, const PreparedObjects& o
   // The place: the most likely challenger near where the place was (moved
   // by the odometry since), as long as any challenger is still there, so a
   // fresh proposal that wins one scan does not end it; else the most likely one.
-  const auto near_track = [&](const Pose2& p) {
-    return challenger_track_ && std::hypot(p.x - challenger_track_->x, p.y - challenger_track_->y) < kSamePlaceShift &&
-           std::abs(angle_diff(p.theta, challenger_track_->theta)) < kSamePlaceTurn;
-  };
+  const auto near_track = [&](const Pose2& p) { return challenger_track_ && close_by(p, *challenger_track_); };
   const Particle* best = nullptr;
   const Particle* best_near = nullptr;
   for (const Particle& c : challengers_) {
