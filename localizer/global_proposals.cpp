@@ -45,7 +45,12 @@ Pose2 GlobalProposals::uniform(std::mt19937& rng) const {
     }
   }
   // Anywhere inside the cell, in the map frame.
-  const Eigen::Vector2d local((cx + unit(rng)) * geometry_.resolution, (cy + unit(rng)) * geometry_.resolution);
+  // One draw a statement: a constructor's arguments are evaluated in no set order (GCC right to
+  // left, clang left to right), so two draws in one call differ between compilers. y first is
+  // the order every figure so far was measured with.
+  const double within_y = unit(rng);
+  const double within_x = unit(rng);
+  const Eigen::Vector2d local((cx + within_x) * geometry_.resolution, (cy + within_y) * geometry_.resolution);
   const Eigen::Vector2d world = transform_point(geometry_.origin, local);
   return {world.x(), world.y(), wrap_angle((2.0 * unit(rng) - 1.0) * std::numbers::pi)};
 }

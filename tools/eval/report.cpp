@@ -80,8 +80,10 @@ std::string render_table(const std::vector<NamedRun>& runs, const EvalOptions& o
   const std::pair<const char*, AccuracyStats RunScores::*> methods[] = {{"ER Acc (recognizer)", &RunScores::recognizer},
                                                                         {"Map-based ER Acc", &RunScores::map_based},
                                                                         {"SLAMER ER Acc", &RunScores::slamer}};
-  for (const auto& [name, member] : methods) {
-    const std::string label = name;
+  for (const auto& method : methods) {
+    // A copy, not a structured binding: clang before 16 cannot capture a binding in a lambda.
+    const auto member = method.second;
+    const std::string label = method.first;
     add(label + std::string(26 - std::min<std::size_t>(26, label.size()), ' ') + " Ave",
         [member](const RunScores& s) { return accuracy_cell(s.*member, (s.*member).mean); });
     add(std::string(27, ' ') + "Std",

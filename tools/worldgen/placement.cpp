@@ -55,7 +55,11 @@ std::optional<KeepOut> Placement::random_segment(std::mt19937& rng, double lengt
       return std::nullopt;
     }
     const double angle = unit(rng) < aligned ? (unit(rng) < 0.5 ? 0.0 : M_PI / 2) : unit(rng) * M_PI;
-    const Eigen::Vector2d center(x0_ + unit(rng) * (x1_ - x0_), y0_ + unit(rng) * (y1_ - y0_));
+    // One draw a statement, y first (see GlobalProposals::uniform): the order the worlds
+    // so far were generated with, now the same with every compiler.
+    const double along_y = unit(rng);
+    const double along_x = unit(rng);
+    const Eigen::Vector2d center(x0_ + along_x * (x1_ - x0_), y0_ + along_y * (y1_ - y0_));
     const Eigen::Vector2d half_along = 0.5 * length * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     const KeepOut s{center - half_along, center + half_along, thickness / 2.0};
     if (fits(s)) {
