@@ -143,6 +143,10 @@ class ParticleFilter {
   // better than the tracked cloud for recovery.adopt_time.
   void compete(const PreparedScan& beams, const PreparedObjects& objects, int64_t utime, UpdateResult* result);
   void end_challenge();
+  // The place the challengers adopt, refined: they hold a sample of poses within
+  // about a proposal's spread of the place, and nothing refines it while the
+  // robot stands still (particle_filter_robust.cpp).
+  Pose2 refined_place(const Pose2& place, const ScanPoints& points) const;
   // `sweep_turn`: how far the robot turned while the scan was taken [rad].
   void match_locally(const ScanPoints& points, double sweep_turn, UpdateResult* result);
   // From the odometry since the last scan and the scan's beam timing; 0 when either is unknown.

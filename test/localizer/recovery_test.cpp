@@ -31,8 +31,8 @@ struct Scan {
   bool adopted = false;
 };
 
-// 1 s at home, `away` seconds of scans from kElsewhere, 4 s at home again.
-std::vector<Scan> stand_still(const SmallWorld& w, double adopt_time, double away) {
+// 1 s at home, `away` seconds of scans from kElsewhere, `back` seconds at home again.
+std::vector<Scan> stand_still(const SmallWorld& w, double adopt_time, double away, double back = 4.0) {
   LocalizerOptions options;
   options.mode = LocalizerMode::kLfm;
   options.particles = 300;
@@ -44,7 +44,7 @@ std::vector<Scan> stand_still(const SmallWorld& w, double adopt_time, double awa
   const LaserScan home = w.scan_at(kHome);
   const LaserScan elsewhere = w.scan_at(kElsewhere);
   std::vector<Scan> scans;
-  const int count = static_cast<int>(std::lround((5.0 + away) * 1e6 / kScanPeriod));
+  const int count = static_cast<int>(std::lround((1.0 + away + back) * 1e6 / kScanPeriod));
   for (int k = 0; k < count; ++k) {
     const double t = static_cast<double>(k) * kScanPeriod * 1e-6;
     const bool away_now = t >= 1.0 && t < 1.0 + away;
@@ -89,7 +89,9 @@ TEST(Recovery, APlaceThatFitsBetterForLessThanTheAdoptTimeDoesNotTakeTheCloud) {
 TEST(Recovery, KidnappedTheCloudMovesToTheNewPlaceAboutTheAdoptTimeAfterLost) {
   const SmallWorld w;
   const double adopt_time = 2.0;
-  const std::vector<Scan> scans = stand_still(w, adopt_time, 6.0);
+  // Home for 10 s after the kidnapping: the way back is a second search, and 4 s were too
+  // few for one of four challenger generators tried (5.9 m off at the end).
+  const std::vector<Scan> scans = stand_still(w, adopt_time, 6.0, 10.0);
   double lost_at = -1.0;
   double adopted_at = -1.0;
   double ok_there_at = -1.0;
@@ -107,9 +109,10 @@ TEST(Recovery, KidnappedTheCloudMovesToTheNewPlaceAboutTheAdoptTimeAfterLost) {
     if (adopted_at < 0.0) {
       EXPECT_GT(distance(s.estimate, kElsewhere), 1.0) << "there before adopting, at " << s.time << " s";
     } else {
-      // The challengers' place: a sample of proposals, within about their
-      // cell; standing still, nothing refines it (0.06-0.16 m over seeds).
-      EXPECT_LT(distance(s.estimate, kElsewhere), 0.2) << "at " << s.time << " s";
+      // The challengers' place, refined by a local match at the adoption: 3-6 cm
+      // over eight challenger generators (0.06-0.16 m without it), where
+      // tracking at home is 2-2.5 cm (the map is the room at 5 cm cells).
+      EXPECT_LT(distance(s.estimate, kElsewhere), 0.08) << "at " << s.time << " s";
     }
     if (lost_at > 0.0 && ok_there_at < 0.0 && s.status == LocalizerStatus::kOk) {
       ok_there_at = s.time;
@@ -118,13 +121,14 @@ TEST(Recovery, KidnappedTheCloudMovesToTheNewPlaceAboutTheAdoptTimeAfterLost) {
   ASSERT_GT(lost_at, 0.0);
   ASSERT_GT(adopted_at, 0.0) << "never moved to where the scans are";
   // The challengers need some scans to find the place (6 fresh proposals a
-  // scan here) and to fit it as a correct pose does, then adopt_time.
+  // scan here) and to fit it as a correct pose does, then adopt_time (up to
+  // 1.9 s more over eight challenger generators).
   EXPECT_GE(adopted_at - lost_at, adopt_time);
-  EXPECT_LT(adopted_at - lost_at, adopt_time + 1.0);
+  EXPECT_LT(adopted_at - lost_at, adopt_time + 2.5);
   EXPECT_GE(ok_there_at, adopted_at) << "OK before the cloud was there";
   EXPECT_LT(ok_there_at - adopted_at, 0.5);
-  // Home again (the scans come from home from 7 s on, for 4 s): found the same way.
-  EXPECT_LT(distance(scans.back().estimate, kHome), 0.1);
+  // Home again (the scans come from home from 7 s on): found the same way.
+  EXPECT_LT(distance(scans.back().estimate, kHome), 0.05);
   EXPECT_EQ(scans.back().status, LocalizerStatus::kOk);
 }
 
@@ -212,10 +216,10 @@ TEST(Recovery, APlaceFoundBySearchingIsUncertainForTheProbationThenOk) {
   const SemanticMap map = room(true);
   const Pose2 home{4.8, 0.8, 2.8};
   const Pose2 kidnapped{2.5, 0.7, 1.0};  // 2.3 m away, facing the block
-  const double probation = 3.0;
+  const double probation = 6.0;
   const ProbationRun run = kidnap(map, home, kidnapped, kidnapped, probation);
   ASSERT_GT(run.adopted_at, 0.0) << "never moved to where the scans are";
-  EXPECT_LT(distance(run.end, kidnapped), 0.1);
+  EXPECT_LT(distance(run.end, kidnapped), 0.05);
   // The search ends a scan or two after adopting; then probation_time of UNCERTAIN.
   EXPECT_GE(run.first_ok_after, run.adopted_at + probation);
   EXPECT_LT(run.first_ok_after, run.adopted_at + probation + 0.5);
@@ -232,7 +236,7 @@ TEST(Recovery, WhereAnotherPlaceLooksAlikeTheStatusStaysUncertainAfterTheProbati
   const SemanticMap map = room(false);
   const Pose2 home{4.8, 0.8, 2.8};
   const Pose2 kidnapped{2.5, 0.7, 1.0};
-  const double probation = 3.0;
+  const double probation = 6.0;
   const ProbationRun run = kidnap(map, home, kidnapped, half_turn(kidnapped), probation);
   ASSERT_GT(run.adopted_at, 0.0);
   // At one of the two places the scans fit, and never OK: the challengers hold
