@@ -141,25 +141,11 @@ SemanticMap room(bool corner_block) {
   });
 }
 
-// A 270 deg, 541-beam scan from `pose` (the sensor at the base), marched through the grid.
+// A 270 deg, 541-beam scan of `map` from `pose` (the sensor at the base).
 LaserScan room_scan(const SemanticMap& map, const Pose2& pose) {
-  LaserScan scan;
-  scan.angle_min = -0.75 * M_PI;
-  scan.angle_increment = 1.5 * M_PI / 540.0;
-  scan.range_min = 0.05f;
-  scan.range_max = 30.0f;
-  for (std::size_t i = 0; i < 541; ++i) {
-    const double a = pose.theta + scan.angle(i);
-    double r = 0.0;
-    for (; r < 10.0; r += 0.005) {
-      const auto cell = map.geometry.cell_at(Eigen::Vector2d(pose.x + r * std::cos(a), pose.y + r * std::sin(a)));
-      if (!cell || map.occupancy[map.geometry.index(cell->x, cell->y)] == Occupancy::kOccupied) {
-        break;
-      }
-    }
-    scan.ranges.push_back(static_cast<float>(r));
-  }
-  return scan;
+  RobotOptions robot;
+  robot.lidar.beams = 541;
+  return simulated_scan(TrueWorld(map, WorldOptions{}, "room"), robot, pose);
 }
 
 struct ProbationRun {
