@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -28,6 +29,12 @@
 
 namespace slamer {
 namespace {
+
+// A file of the test's, removed at its end however it ends.
+struct TempFile {
+  std::string path;
+  ~TempFile() { std::filesystem::remove(path); }
+};
 
 // small_room's first half: 3 m out, a half turn, 2 m back (about 13 s).
 std::string write_world() {
@@ -115,7 +122,8 @@ TEST(SimThroughDrivers, LidarAndOdometryAreTheSimulatedOnes) {
       10.0))
       << urg->stderr_text() << wheels->stderr_text();
 
-  test::ChildProcess sim(test::binary_path("slamer-sim"), {"--world", write_world(), "--config",
+  const TempFile world{write_world()};
+  test::ChildProcess sim(test::binary_path("slamer-sim"), {"--world", world.path, "--config",
                                                            std::string(SLAMER_SOURCE_DIR) + "/config/sim_drivers.yaml",
                                                            "--seed", "1", "--speed", "1", "--lcm-url", url});
   ASSERT_TRUE(bus.pump_until([&] { return !sim.running(); }, 40.0)) << sim.stderr_text();

@@ -67,9 +67,14 @@ ChildProcess::ChildProcess(const std::string& program, const std::vector<std::st
 }
 
 ChildProcess::~ChildProcess() {
+  // SIGTERM first, as supervisor stops a program: it removes what it made (an
+  // emulator's pty link or socket file); SIGKILL if it has not exited in 2 s.
   if (running()) {
-    ::kill(pid_, SIGKILL);
-    wait(5.0);
+    ::kill(pid_, SIGTERM);
+    if (!wait(2.0)) {
+      ::kill(pid_, SIGKILL);
+      wait(5.0);
+    }
   }
   std::error_code ignored;
   std::filesystem::remove_all(dir_, ignored);

@@ -1,5 +1,6 @@
 // Starts a real program as a child process for process-level tests: output
-// to files, SIGINT/SIGTERM unblocked in the child, killed on destruction.
+// to files, SIGINT/SIGTERM unblocked in the child, stopped on destruction
+// (SIGTERM, then SIGKILL after 2 s).
 #pragma once
 
 #include <sys/types.h>

@@ -11,6 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -19,6 +20,7 @@
 #include "common/process/command_line.hpp"
 #include "common/process/lcm_bus.hpp"
 #include "common/process/process_main.hpp"
+#include "common/process/stop_signals.hpp"
 #include "tools/tfrog_sim/wheel_path.hpp"
 
 namespace {
@@ -48,6 +50,16 @@ int run(const slamer::CommandLine& cli) {
       listen(listener, 1) != 0) {
     throw std::runtime_error("cannot listen on " + socket_path + ": " + std::strerror(errno));
   }
+  // SIGINT/SIGTERM end the run, waiting for the driver or streaming, and the socket file is removed.
+  slamer::StopSignals stop;
+  pollfd waiting[2] = {{listener, POLLIN, 0}, {stop.fd(), POLLIN, 0}};
+  while (poll(waiting, 2, -1) < 0 && errno == EINTR) {
+  }
+  if (stop.requested()) {
+    ::close(listener);
+    ::unlink(socket_path.c_str());
+    return 0;
+  }
   const int fd = accept(listener, nullptr, nullptr);
   std::printf("%ld connected\n", slamer::now_utime());
   std::fflush(stdout);
@@ -63,7 +75,9 @@ int run(const slamer::CommandLine& cli) {
   bool restarted = false;
   bool reported = false;
   for (double t = 0.0; t < duration; t += period, ++n) {
-    usleep(static_cast<useconds_t>(period * 1e6));
+    if (stop.wait(period)) {
+      break;
+    }
     const double start = cli.get_double("path-delay");
     if (t >= start) {
       const auto counts = path.step(period);

@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "common/process/lcm_bus.hpp"
+#include "common/process/stop_signals.hpp"
 #include "tools/tfrog_sim/encoder_source.hpp"
 #include "tools/tfrog_sim/pty_port.hpp"
 #include "tools/tfrog_sim/tfrog_board.hpp"
@@ -44,6 +45,8 @@ int run_board(const CommandLine& cli) {
   if (cli.has("path")) {
     path.emplace(parse_path(cli.get("path")), kinematics);
   }
+  // Before LCM: SIGINT/SIGTERM end the loop below, and the port's destructor removes the link.
+  StopSignals stop;
   EncoderFollower follower(kinematics);
   std::optional<EncoderSource> source;
   if (cli.has("source-channel")) {
@@ -74,7 +77,7 @@ int run_board(const CommandLine& cli) {
   std::string last_state;
   bool was_expired = false;
   uint8_t buffer[4096];
-  while (duration <= 0.0 || monotonic_us() - start < static_cast<int64_t>(duration * 1e6)) {
+  while ((duration <= 0.0 || monotonic_us() - start < static_cast<int64_t>(duration * 1e6)) && !stop.requested()) {
     const double t = static_cast<double>(monotonic_us() - start) * 1e-6;
     if (port.is_open() && unplug_at >= 0.0 && !unplugged_once && t >= unplug_at) {
       port.close();
