@@ -74,6 +74,7 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
   reader.read_choice("spatial_line_ends", &end_choice, {ends[0], ends[1], ends[2]});
   o->spatial_line_ends = static_cast<SpatialLineEnds>(std::find(ends.begin(), ends.end(), end_choice) - ends.begin());
   reader.read("unmapped_probability", &o->unmapped_probability, in_range(0.0, 0.99));
+  reader.read("posterior_unmapped_probability", &o->posterior_unmapped_probability, in_range(0.0, 0.99));
   reader.read("object_weight", &o->object_weight, in_range(0.0, 10.0));
   reader.read("object_samples", &o->object_samples, in_range(1, 50));
   reader.read("min_probability", &o->min_probability, in_range(1e-12, 0.1));

@@ -221,6 +221,7 @@ ParticleFilter::PreparedObjects ParticleFilter::prepare_objects(const LineObject
                                    : std::pow(it->second, options_.slamer.training_prior_exponent));
     }
   }
+  prepared.training_prior = training_prior;
   for (const LineObject& object : set.objects) {
     const bool finite = object.start.allFinite() && object.end.allFinite() &&
                         std::all_of(object.probs.begin(), object.probs.end(), [](float p) { return std::isfinite(p); });
@@ -409,9 +410,12 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   result.semantic.class_names = prepared_objects.class_names;
   for (std::size_t k = 0; k < prepared_objects.objects.size(); ++k) {
     const LineObject& o = prepared_objects.objects[k].object;
-    const double norm = log_sum_exp(class_terms[k]);
+    const std::vector<double> terms =
+        with_unmapped_objects(class_terms[k], prepared_objects.objects[k].log_recognition,
+                              prepared_objects.training_prior, options_.slamer.posterior_unmapped_probability);
+    const double norm = log_sum_exp(terms);
     std::vector<float> posterior;
-    for (const double t : class_terms[k]) {
+    for (const double t : terms) {
       posterior.push_back(static_cast<float>(std::exp(t - norm)));
     }
     result.semantic.objects.push_back({o.kind, transform_point(best_sensor, o.start),

@@ -24,6 +24,7 @@ struct ParticleFilter::PreparedObjects {
   };
   std::vector<Object> objects;
   std::vector<std::string> class_names;
+  std::vector<double> training_prior;  // pi^e per class (empty: none)
 };
 
 namespace filter_constants {

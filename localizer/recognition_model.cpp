@@ -48,6 +48,30 @@ double log_map_prior(double d, double sigma, double unmapped_probability) {
   return log_normal_density(0.0, sigma) + std::log(mapped + unmapped_probability);
 }
 
+std::vector<double> with_unmapped_objects(const std::vector<double>& terms, const std::vector<double>& log_recognition,
+                                          const std::vector<double>& base_rates, double unmapped_probability) {
+  const std::size_t n = terms.size();
+  if (unmapped_probability <= 0.0 || n == 0 || log_recognition.size() != n) {
+    return terms;
+  }
+  std::vector<double> log_prior(n);
+  for (std::size_t l = 0; l < n; ++l) {
+    log_prior[l] = terms[l] - log_recognition[l];
+  }
+  const double prior_norm = log_sum_exp(log_prior);
+  double rate_sum = 0.0;
+  for (std::size_t l = 0; l < n; ++l) {
+    rate_sum += base_rates.size() == n ? base_rates[l] : 1.0;
+  }
+  std::vector<double> mixed(n);
+  for (std::size_t l = 0; l < n; ++l) {
+    const double mapped = std::isfinite(prior_norm) ? std::exp(log_prior[l] - prior_norm) : 0.0;
+    const double rate = (base_rates.size() == n ? base_rates[l] : 1.0) / rate_sum;
+    mixed[l] = log_recognition[l] + std::log((1.0 - unmapped_probability) * mapped + unmapped_probability * rate);
+  }
+  return mixed;
+}
+
 double log_sum_exp(const std::vector<double>& terms) {
   if (terms.empty()) {
     return -std::numeric_limits<double>::infinity();

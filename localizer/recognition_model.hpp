@@ -38,6 +38,18 @@ double log_normal_density(double d, double sigma);
 // distance to the map says nothing). u = 0 is log_normal_density.
 double log_map_prior(double d, double sigma, double unmapped_probability);
 
+// A class posterior's terms (log Dir + log map prior per class, as Eq. (4)
+// scores them) with the map prior made a mixture: with probability
+// `unmapped_probability` the object is not the map's (furniture added, a door
+// moved), and then its class follows the base rates `base_rates` (pi^e, the
+// training prior divide_out_prior took out; empty: uniform) instead of the
+// map, p(l | x, m) = (1 - u) p_map(l) + u pi_l / sum pi, p_map the map prior
+// normalized over the classes. Without it an object the map knows nothing of
+// (all its classes' distances saturated) took the class the divided-out prior
+// favours most: the rarest (closed doors on added furniture).
+std::vector<double> with_unmapped_objects(const std::vector<double>& terms, const std::vector<double>& log_recognition,
+                                          const std::vector<double>& base_rates, double unmapped_probability);
+
 // log of sum_l exp(terms[l]), stable; -inf for an empty list.
 double log_sum_exp(const std::vector<double>& terms);
 
