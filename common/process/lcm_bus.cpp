@@ -2,7 +2,6 @@
 
 #include <poll.h>
 #include <signal.h>
-#include <sys/signalfd.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -45,22 +44,8 @@ struct LcmBus::Context {
 
 LcmBus::LcmBus(std::string name, const std::string& lcm_url, ProcessOptions options)
     : Bus(std::move(name), std::move(options), static_cast<int32_t>(getpid()), now_utime()) {
-  // Block the stop signals before LCM starts its threads so they inherit the
-  // mask and every SIGINT/SIGTERM is read from the signalfd in run().
-  sigset_t stop_signals;
-  sigemptyset(&stop_signals);
-  sigaddset(&stop_signals, SIGINT);
-  sigaddset(&stop_signals, SIGTERM);
-  if (pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr) != 0) {
-    throw std::runtime_error("cannot block SIGINT/SIGTERM");
-  }
-  signal_fd_ = signalfd(-1, &stop_signals, SFD_NONBLOCK | SFD_CLOEXEC);
-  if (signal_fd_ < 0) {
-    throw std::runtime_error(std::string("cannot create a signalfd: ") + std::strerror(errno));
-  }
   lcm_ = std::make_unique<lcm::LCM>(lcm_url);
   if (!lcm_->good()) {
-    close(signal_fd_);
     throw std::runtime_error("cannot open LCM" + (lcm_url.empty() ? std::string() : " URL '" + lcm_url + "'") +
                              " (for UDP multicast the host needs a multicast route, e.g. "
                              "'ip route add 224.0.0.0/4 dev lo' on a machine without a network)");
@@ -68,10 +53,7 @@ LcmBus::LcmBus(std::string name, const std::string& lcm_url, ProcessOptions opti
 }
 
 LcmBus::~LcmBus() {
-  lcm_.reset();
-  if (signal_fd_ >= 0) {
-    close(signal_fd_);
-  }
+  lcm_.reset();  // first: its subscriptions point to channels_
 }
 
 void LcmBus::start_receiving(const std::string& channel) {
@@ -114,7 +96,7 @@ int LcmBus::run() {
     const int64_t wait = std::clamp<int64_t>(next_timer_due() - now(), 0, kMaxWaitUs);
     // A program that subscribes to nothing never opens LCM's receive side: no
     // copies of every datagram on the group (its own included) to read and drop.
-    fds.assign({{channels_.empty() ? -1 : lcm_->getFileno(), POLLIN, 0}, {signal_fd_, POLLIN, 0}});
+    fds.assign({{channels_.empty() ? -1 : lcm_->getFileno(), POLLIN, 0}, {stop_signals_.fd(), POLLIN, 0}});
     watched_fds.clear();
     for (const auto& [fd, callback] : watched_) {
       fds.push_back({fd, POLLIN, 0});
@@ -126,9 +108,9 @@ int LcmBus::run() {
       return 1;
     }
     if (ready > 0 && (fds[1].revents & POLLIN) != 0) {
-      signalfd_siginfo signal_info{};
-      if (read(signal_fd_, &signal_info, sizeof(signal_info)) == static_cast<ssize_t>(sizeof(signal_info))) {
-        log_info(std::string("received ") + (signal_info.ssi_signo == SIGINT ? "SIGINT" : "SIGTERM") + ", stopping");
+      if (stop_signals_.requested()) {
+        log_info(std::string("received ") + (stop_signals_.last_signal() == SIGINT ? "SIGINT" : "SIGTERM") +
+                 ", stopping");
       }
       stop();
       break;

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "common/process/bus.hpp"
+#include "common/process/stop_signals.hpp"
 
 namespace slamer {
 
@@ -38,7 +39,7 @@ class LcmBus final : public Bus {
   void start_receiving(const std::string& channel) override;
   bool send(const std::string& channel, const std::vector<uint8_t>& bytes, int64_t event_utime) override;
 
-  int signal_fd_ = -1;
+  StopSignals stop_signals_;  // before lcm_: blocked before LCM starts its threads, which inherit the mask
   std::unique_ptr<lcm::LCM> lcm_;
   std::map<int, std::function<void()>> watched_;
   struct Context;

@@ -38,6 +38,7 @@ bool StopSignals::requested() {
   signalfd_siginfo info{};
   while (::read(fd_, &info, sizeof(info)) == static_cast<ssize_t>(sizeof(info))) {
     requested_ = true;
+    last_signal_ = static_cast<int>(info.ssi_signo);
   }
   return requested_;
 }

@@ -19,10 +19,12 @@ class StopSignals {
   bool requested();
   // Sleeps up to `seconds`, waking early for a stop signal; returns requested().
   bool wait(double seconds);
+  int last_signal() const { return last_signal_; }  // SIGINT or SIGTERM once requested(), else 0
 
  private:
   int fd_ = -1;
   bool requested_ = false;
+  int last_signal_ = 0;
 };
 
 }  // namespace slamer

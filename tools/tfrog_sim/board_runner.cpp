@@ -77,7 +77,8 @@ int run_board(const CommandLine& cli) {
   std::string last_state;
   bool was_expired = false;
   uint8_t buffer[4096];
-  while ((duration <= 0.0 || monotonic_us() - start < static_cast<int64_t>(duration * 1e6)) && !stop.requested()) {
+  bool stopping = false;
+  while (!stopping && (duration <= 0.0 || monotonic_us() - start < static_cast<int64_t>(duration * 1e6))) {
     const double t = static_cast<double>(monotonic_us() - start) * 1e-6;
     if (port.is_open() && unplug_at >= 0.0 && !unplugged_once && t >= unplug_at) {
       port.close();
@@ -89,8 +90,10 @@ int run_board(const CommandLine& cli) {
       port.open();
       std::printf("%ld plugged %s\n", slamer::now_utime(), port.slave_name().c_str());
     }
-    pollfd fds[2] = {{port.is_open() ? port.fd() : -1, POLLIN, 0}, {source ? source->fd() : -1, POLLIN, 0}};
-    if (poll(fds, 2, 1) > 0) {
+    pollfd fds[3] = {
+        {port.is_open() ? port.fd() : -1, POLLIN, 0}, {source ? source->fd() : -1, POLLIN, 0}, {stop.fd(), POLLIN, 0}};
+    if (poll(fds, 3, 1) > 0) {
+      stopping = (fds[2].revents & POLLIN) != 0 && stop.requested();
       if ((fds[0].revents & POLLIN) != 0) {
         const ssize_t n = read(port.fd(), buffer, sizeof(buffer));
         if (n > 0) {
