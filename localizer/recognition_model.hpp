@@ -43,7 +43,7 @@ double log_map_prior(double d, double sigma, double unmapped_probability);
 // `unmapped_probability` the object is not the map's (furniture added, a door
 // moved), and then its class follows the base rates `base_rates` (pi^e, the
 // training prior divide_out_prior took out; empty: uniform) instead of the
-// map, p(l | x, m) = (1 - u) p_map(l) + u pi_l / sum pi, p_map the map prior
+// map, p(l | x, m) = (1 - u) p_map(l) + u b_l / sum b, p_map the map prior
 // normalized over the classes. Without it an object the map knows nothing of
 // (all its classes' distances saturated) took the class the divided-out prior
 // favours most: the rarest (closed doors on added furniture).
