@@ -84,6 +84,8 @@ int main(int argc, char** argv) {
     options.truth_file = cl.get("truth");
     options.duration_s = cl.get_double("duration");
     options.seed = knobs.seed;
+    // Before the feed's LCM: SIGINT/SIGTERM end the server's loop, which then removes the pty link.
+    StopSignals stop;
     std::unique_ptr<ScanFeed> feed;
     if (cl.has("source-log")) {
       feed = std::make_unique<LogScanFeed>(cl.get("source-log"),
@@ -93,7 +95,7 @@ int main(int argc, char** argv) {
     }
     knobs.external_scans = feed != nullptr;
     SimSensor sensor(model, knobs);
-    return run_sim_server(sensor, options, feed.get());
+    return run_sim_server(sensor, options, stop, feed.get());
   } catch (const CommandLineError& e) {
     std::fprintf(stderr, "slamer-urg-sim: %s\n", e.what());
     return 2;

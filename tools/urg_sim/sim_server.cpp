@@ -24,11 +24,6 @@ namespace slamer::urg {
 
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0;
-void on_signal(int) {
-  g_stop = 1;
-}
-
 int64_t realtime_us() {
   timespec ts{};
   clock_gettime(CLOCK_REALTIME, &ts);
@@ -88,9 +83,7 @@ class Writer {
 
 }  // namespace
 
-int run_sim_server(SimSensor& sensor, const SimServerOptions& o, ScanFeed* feed) {
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+int run_sim_server(SimSensor& sensor, const SimServerOptions& o, StopSignals& stop, ScanFeed* feed) {
   std::signal(SIGPIPE, SIG_IGN);
   std::ofstream truth;
   if (!o.truth_file.empty()) {
@@ -150,7 +143,7 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o, ScanFeed* feed)
     }
   };
   char buffer[4096];
-  while (!g_stop) {
+  while (!stop.requested()) {
     int64_t now = realtime_us();
     if (o.duration_s > 0 && now - start > static_cast<int64_t>(o.duration_s * 1e6)) {
       break;
@@ -163,8 +156,10 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o, ScanFeed* feed)
         continue;
       }
     }
-    pollfd fds[3];
+    pollfd fds[4];
     int n = 0;
+    fds[n++] = {stop.fd(), POLLIN, 0};  // wakes the loop at once for its check above
+    const int listen_index = n;
     if (listen_fd >= 0) {
       fds[n++] = {listen_fd, POLLIN, 0};
     }
@@ -183,7 +178,7 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o, ScanFeed* feed)
     }
     poll(fds, static_cast<nfds_t>(n), timeout_ms);
     now = realtime_us();
-    if (listen_fd >= 0 && (fds[0].revents & POLLIN)) {
+    if (listen_fd >= 0 && (fds[listen_index].revents & POLLIN)) {
       const int c = accept4(listen_fd, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
       if (c >= 0) {
         if (client >= 0) {
@@ -243,6 +238,10 @@ int run_sim_server(SimSensor& sensor, const SimServerOptions& o, ScanFeed* feed)
   }
   if (listen_fd >= 0) {
     close(listen_fd);
+  }
+  if (!o.pty_link.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(o.pty_link, ignored);
   }
   return 0;
 }

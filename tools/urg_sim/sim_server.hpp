@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "common/process/stop_signals.hpp"
 #include "tools/urg_sim/sim_sensor.hpp"
 
 namespace slamer::urg {
@@ -36,8 +37,9 @@ class ScanFeed {
   virtual int64_t next_due_us() const { return INT64_MAX; }  // host time it needs pumping again
 };
 
-// Runs until the duration ends, a signal, or the feed has ended and its last
-// scan is sent; returns the exit code.
-int run_sim_server(SimSensor& sensor, const SimServerOptions& options, ScanFeed* feed = nullptr);
+// Runs until the duration ends, `stop` is requested (SIGINT/SIGTERM), or the
+// feed has ended and its last scan is sent; removes options.pty_link; returns
+// the exit code.
+int run_sim_server(SimSensor& sensor, const SimServerOptions& options, StopSignals& stop, ScanFeed* feed = nullptr);
 
 }  // namespace slamer::urg
