@@ -73,6 +73,11 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
   std::string end_choice = ends[static_cast<std::size_t>(o->spatial_line_ends)];
   reader.read_choice("spatial_line_ends", &end_choice, {ends[0], ends[1], ends[2]});
   o->spatial_line_ends = static_cast<SpatialLineEnds>(std::find(ends.begin(), ends.end(), end_choice) - ends.begin());
+  const std::array<std::string, 2> physical = {"mean", "farthest"};
+  std::string physical_choice = physical[static_cast<std::size_t>(o->physical_line_distance)];
+  reader.read_choice("physical_line_distance", &physical_choice, {physical[0], physical[1]});
+  o->physical_line_distance = static_cast<PhysicalLineDistance>(
+      std::find(physical.begin(), physical.end(), physical_choice) - physical.begin());
   reader.read("unmapped_probability", &o->unmapped_probability, in_range(0.0, 0.99));
   reader.read("posterior_unmapped_probability", &o->posterior_unmapped_probability, in_range(0.0, 0.99));
   reader.read("object_weight", &o->object_weight, in_range(0.0, 10.0));

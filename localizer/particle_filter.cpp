@@ -45,6 +45,15 @@ double mean_distance(const DistanceField& distances, const std::vector<Cell>& ce
   return sum / static_cast<double>(n);
 }
 
+// The largest distance of `n` samples, those off the map at `far`.
+double farthest_distance(const DistanceField& distances, const std::vector<Cell>& cells, std::size_t n, double far) {
+  double farthest = cells.size() < n ? far : 0.0;
+  for (const Cell& cell : cells) {
+    farthest = std::max(farthest, std::min(static_cast<double>(distances.at(cell.x, cell.y)), far));
+  }
+  return farthest;
+}
+
 }  // namespace
 
 ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& options, const Pose2& lidar_mount)
@@ -292,6 +301,7 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
 double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects,
                                               const DistanceField& free_space, double unmapped_probability,
                                               SpatialLineEnds spatial_line_ends,
+                                              PhysicalLineDistance physical_line_distance,
                                               std::vector<std::vector<double>>* class_terms) const {
   // The sensor pose in grid cells: one transform per particle.
   const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
@@ -336,7 +346,9 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
         const bool inner = inner_samples > 0 && (spatial_line_ends == SpatialLineEnds::kLeftOutForFreeSpace
                                                      ? field == kFreeSpace
                                                      : spatial_line_ends == SpatialLineEnds::kLeftOut && spatial);
-        d = mean_distance(distances, inner ? inner_cells : cells, inner ? inner_samples : o.samples.size(), far);
+        d = !spatial && physical_line_distance == PhysicalLineDistance::kFarthest
+                ? farthest_distance(distances, cells, o.samples.size(), far)
+                : mean_distance(distances, inner ? inner_cells : cells, inner ? inner_samples : o.samples.size(), far);
       }
       terms[l] = o.log_recognition[l] +
                  (d == far ? prior_at_far : log_map_prior(d, options_.slamer.prior_sigma, unmapped_probability));
@@ -352,7 +364,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
 double ParticleFilter::objects_weight(const Pose2& pose, const PreparedObjects& objects) const {
   return options_.mode == LocalizerMode::kSlamer
              ? objects_log_likelihood(pose, objects, *free_distance_, options_.slamer.unmapped_probability,
-                                      SpatialLineEnds::kScored, nullptr)
+                                      SpatialLineEnds::kScored, PhysicalLineDistance::kMean, nullptr)
              : 0.0;
 }
 
@@ -362,7 +374,7 @@ double ParticleFilter::object_log_likelihood(const Pose2& pose, const LineObject
   set.class_names = classes;
   set.objects = {object};
   return objects_log_likelihood(pose, prepare_objects(set), *free_distance_, options_.slamer.unmapped_probability,
-                                SpatialLineEnds::kScored, nullptr);
+                                SpatialLineEnds::kScored, PhysicalLineDistance::kMean, nullptr);
 }
 
 double ParticleFilter::scan_log_likelihood(const Pose2& pose, const LaserScan& scan) const {
@@ -404,7 +416,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   const Pose2 best_sensor = compose(particles_[best].pose, mount_);
   std::vector<std::vector<double>> class_terms;
   objects_log_likelihood(particles_[best].pose, prepared_objects, *free_label_distance_, 0.0,
-                         options_.slamer.spatial_line_ends, &class_terms);
+                         options_.slamer.spatial_line_ends, options_.slamer.physical_line_distance, &class_terms);
   result.semantic.utime = scan.utime;
   result.semantic.seq = scan.seq;
   result.semantic.class_names = prepared_objects.class_names;

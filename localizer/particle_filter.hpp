@@ -125,9 +125,11 @@ class ParticleFilter {
   double beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const;
   // `free_space`: the distances free-space classes are scored by (Eq. (7));
   // `unmapped_probability`: Eq. (7)'s floor (log_map_prior); `spatial_line_ends`:
-  // which classes leave out the end samples (SlamerOptions).
+  // which classes leave out the end samples, `physical_line_distance`: how a physical
+  // line's samples make its distance (SlamerOptions).
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects, const DistanceField& free_space,
                                 double unmapped_probability, SpatialLineEnds spatial_line_ends,
+                                PhysicalLineDistance physical_line_distance,
                                 std::vector<std::vector<double>>* class_terms) const;
   // The objects' part of a particle's weight (Eq. (7) with its floor): SLAMER
   // only, 0 in the other modes. The tracked cloud and the challengers share it.
