@@ -240,6 +240,19 @@ std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
     return std::nullopt;
   }
   const Pending& oldest = pending_.front();
+  // The odometry is interpolated to the scan's time: a scan that came before
+  // the odometry past its time (a stalled host delivers both in a burst) waits
+  // for it, up to odometry_wait, unless the odometry is missing. Otherwise the
+  // scan's prediction depended on which datagram this process read first, and
+  // a replay (the recognizer's objects logged right after their scan) did not
+  // repeat the live run.
+  const bool odometry_ready =
+      flush || odometry_.empty() || odometry_.back().first >= oldest.scan.utime ||
+      oldest.scan.utime - odometry_.back().first > microseconds(options_.inputs.odometry_timeout) ||
+      now_utime - oldest.arrival_utime >= microseconds(options_.inputs.odometry_wait) || pending_.size() > kMaxWaiting;
+  if (!odometry_ready) {
+    return std::nullopt;
+  }
   const bool release =
       !needs_objects() || oldest.objects || flush ||
       now_utime - oldest.arrival_utime >= microseconds(options_.inputs.objects_wait) || pending_.size() > kMaxWaiting ||

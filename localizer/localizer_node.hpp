@@ -1,5 +1,6 @@
 // What a running localizer does around the filter:
-//  * keeps odometry to interpolate it to each scan's time;
+//  * keeps odometry to interpolate it to each scan's time, holding a scan
+//    up to `odometry_wait` for odometry past its time;
 //  * pairs each scan with its recognized objects, holding scans (in order) up
 //    to `objects_wait` for them; a scan is released without objects when a
 //    later scan's objects came first, or the recognizer is missing; objects

@@ -184,6 +184,7 @@ void read_options(const ConfigReader& reader, ResumeOptions* o) {
 void read_options(const ConfigReader& reader, InputOptions* o) {
   reader.read("scan_timeout", &o->scan_timeout, in_range(0.01, 60.0));
   reader.read("objects_wait", &o->objects_wait, in_range(0.0, 10.0));
+  reader.read("odometry_wait", &o->odometry_wait, in_range(0.0, 10.0));
   reader.read("objects_timeout", &o->objects_timeout, in_range(0.01, 60.0));
   reader.read("odometry_timeout", &o->odometry_timeout, in_range(0.01, 60.0));
 }

@@ -235,6 +235,7 @@ struct ResumeOptions {
 struct InputOptions {
   double scan_timeout = 2.0;      // [s] no scan for this long: no pose, PROCESS_STATUS says so
   double objects_wait = 0.1;      // [s] how long a scan waits for its LINE_OBJECTS
+  double odometry_wait = 0.05;    // [s] how long a scan waits for odometry past its time
   double objects_timeout = 1.0;   // [s] none for this long: the recognizer is missing, scans stop waiting
   double odometry_timeout = 0.5;  // [s] no odometry this close before a scan: odometry is missing
   bool operator==(const InputOptions&) const = default;

@@ -206,6 +206,7 @@ void LocalizerProcess::on_odometry(const odometry_t& m) {
   }
   last_odometry_ = {m.utime, pose};
   node_.on_odometry(m.utime, pose);
+  publish_ready();  // a scan may have waited for odometry past its time
 }
 
 void LocalizerProcess::on_initial_pose(const initial_pose_t& m) {

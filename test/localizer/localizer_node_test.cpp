@@ -62,6 +62,58 @@ TEST(LocalizerNode, OdometryBetweenScansMovesTheEstimate) {
   EXPECT_FALSE(node.health().objects_missing);
 }
 
+// Odometry is interpolated to a scan's time. A scan read before the odometry
+// past its time (a stalled host delivers both in a burst; the recognizer's
+// replayed objects come right after their scan) waits for it, so the result
+// does not depend on which came first; up to odometry_wait if it does not come.
+TEST(LocalizerNode, AScanReadBeforeTheOdometryPastItsTimeWaitsForIt) {
+  const SmallWorld w;
+  const auto odometry_at = [](int64_t t) { return Pose2{0.5e-6 * static_cast<double>(t), 0.0, 0.0}; };  // 0.5 m/s
+  const auto feed_until = [&](LocalizerNode& node, int64_t until) {
+    for (int64_t t = 0; t <= until; t += 10'000) {
+      node.on_odometry(t, odometry_at(t));
+    }
+  };
+  LaserScan first = w.scan_at({2.0, 3.0, 0.0});
+  first.utime = 0;
+  LaserScan scan = w.scan_at({2.0 + 0.5 * 0.105, 3.0, 0.0});
+  scan.utime = 105'000;
+  std::vector<Pose2> estimates;
+  for (const bool scan_first : {false, true}) {
+    LocalizerNode node(w.map, node_options(LocalizerMode::kLfm), w.robot.lidar.mount);
+    node.on_odometry(0, odometry_at(0));
+    node.on_scan(first, 10'000);
+    ASSERT_TRUE(node.poll(10'000).has_value());
+    feed_until(node, 100'000);
+    if (scan_first) {
+      node.on_scan(scan, 120'000);
+      EXPECT_FALSE(node.poll(120'000).has_value());  // odometry up to 100 ms only
+      EXPECT_FALSE(node.poll(169'999).has_value());
+    }
+    node.on_odometry(110'000, odometry_at(110'000));
+    if (!scan_first) {
+      node.on_scan(scan, 120'000);
+    }
+    const std::optional<UpdateResult> result = node.poll(120'000);
+    ASSERT_TRUE(result.has_value());
+    estimates.push_back(result->estimate.pose);
+  }
+  EXPECT_EQ(estimates[0].x, estimates[1].x);
+  EXPECT_EQ(estimates[0].y, estimates[1].y);
+  EXPECT_EQ(estimates[0].theta, estimates[1].theta);
+  EXPECT_NEAR(estimates[0].x, 2.0 + 0.5 * 0.105, 0.03);
+  // Odometry that does not come: the scan goes after odometry_wait (50 ms) with the latest.
+  LocalizerNode node(w.map, node_options(LocalizerMode::kLfm), w.robot.lidar.mount);
+  node.on_odometry(0, odometry_at(0));
+  node.on_scan(first, 10'000);
+  ASSERT_TRUE(node.poll(10'000).has_value());
+  feed_until(node, 100'000);
+  node.on_scan(scan, 120'000);
+  EXPECT_FALSE(node.poll(169'999).has_value());
+  EXPECT_TRUE(node.poll(170'000).has_value());
+  EXPECT_FALSE(node.health().odometry_missing);
+}
+
 TEST(LocalizerNode, ScansWaitInOrderForTheirObjects) {
   const SmallWorld w;
   LocalizerNode node(w.map, node_options(LocalizerMode::kSlamer), w.robot.lidar.mount);
@@ -223,6 +275,7 @@ TEST(LocalizerNode, MissingRecognizerStopsTheWaitAndSaysSo) {
   EXPECT_EQ(node.counters().scans_without_objects, 80);
   // Objects again: the node waits for them again.
   scan.utime += 25'000;
+  node.on_odometry(scan.utime, {});
   node.on_scan(scan);
   node.on_objects(objects_for(scan.utime));
   ASSERT_TRUE(node.poll(scan.utime).has_value());
@@ -268,6 +321,7 @@ TEST(LocalizerNode, NonFiniteInputIsRefusedNotSpread) {
   node.on_odometry(1'010'000, {kNaN, 0.0, 0.0});
   node.on_odometry(1'020'000, {0.0, std::numeric_limits<double>::infinity(), 0.0});
   EXPECT_EQ(node.counters().invalid_odometry, 2);
+  node.on_odometry(1'030'000, {0.0, 0.0, 0.0});  // past the scan's time: it need not wait
   LaserScan scan = w.scan_at({2.0, 3.0, 0.0});
   scan.utime = 1'025'000;
   node.on_scan(scan);
