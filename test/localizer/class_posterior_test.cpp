@@ -1,6 +1,6 @@
 // SLAMER's class posteriors (paper Eq. (4) with Eqs. (7)-(8)) of single objects
 // in the small world: the training prior divided out, free space's margins, a
-// spatial line's ends, and objects the map lacks.
+// spatial line's ends, objects the map lacks, and a physical line's farthest sample.
 #include <gtest/gtest.h>
 
 #include <algorithm>

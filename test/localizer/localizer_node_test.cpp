@@ -70,7 +70,7 @@ TEST(LocalizerNode, AScanReadBeforeTheOdometryPastItsTimeWaitsForIt) {
   const SmallWorld w;
   const auto odometry_at = [](int64_t t) { return Pose2{0.5e-6 * static_cast<double>(t), 0.0, 0.0}; };  // 0.5 m/s
   const auto feed_until = [&](LocalizerNode& node, int64_t until) {
-    for (int64_t t = 0; t <= until; t += 10'000) {
+    for (int64_t t = 10'000; t <= until; t += 10'000) {
       node.on_odometry(t, odometry_at(t));
     }
   };
