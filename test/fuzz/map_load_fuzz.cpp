@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -12,12 +13,23 @@
 
 namespace {
 
-const std::string& directory() {
-  static const std::string dir = [] {
+// The files of one input, removed when the fuzzer exits (libFuzzer ends a
+// -max_total_time run with exit(), which runs static destructors).
+struct TempDirectory {
+  std::string path;
+  TempDirectory() {
     char pattern[] = "/tmp/slamer_map_fuzz_XXXXXX";
-    return std::string(mkdtemp(pattern));
-  }();
-  return dir;
+    path = mkdtemp(pattern);
+  }
+  ~TempDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
+
+const std::string& directory() {
+  static const TempDirectory dir;
+  return dir.path;
 }
 
 void write(const std::string& name, const uint8_t* data, std::size_t size) {
