@@ -1,39 +1,22 @@
 // libFuzzer target: loading a map whose image bytes are arbitrary (the first
 // input byte picks PGM or PNG occupancy, or the semantic PNG layer). Any input
 // gives a map or a one-line ConfigError.
-#include <unistd.h>
-
 #include <cstdint>
-#include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "common/map/semantic_map.hpp"
+#include "test/support/temp_dir.hpp"
 
 namespace {
 
-// The files of one input, removed when the fuzzer exits (libFuzzer ends a
-// -max_total_time run with exit(), which runs static destructors).
-struct TempDirectory {
-  std::string path;
-  TempDirectory() {
-    char pattern[] = "/tmp/slamer_map_fuzz_XXXXXX";
-    path = mkdtemp(pattern);
-  }
-  ~TempDirectory() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path, ignored);
-  }
-};
-
-const std::string& directory() {
-  static const TempDirectory dir;
-  return dir.path;
+const slamer::test::TempDir& directory() {
+  static const slamer::test::TempDir dir("slamer_map_fuzz");
+  return dir;
 }
 
 void write(const std::string& name, const uint8_t* data, std::size_t size) {
-  std::ofstream(directory() + "/" + name, std::ios::binary)
+  std::ofstream(directory().file(name), std::ios::binary)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
 }
 
@@ -50,11 +33,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     write("map.pgm", kPgm, sizeof(kPgm) - 1);
   }
   write(mode == 2 ? "semantic.png" : occupancy, data + 1, size - 1);
-  std::ofstream(directory() + "/map.yaml")
-      << "image: " << occupancy << "\nresolution: 0.05\norigin: [0, 0, 0]\n"
-      << (mode == 2 ? "semantic:\n  image: semantic.png\n  classes: [{name: door, color: [255, 0, 255]}]\n" : "");
+  const std::string yaml = directory().write(
+      "map.yaml",
+      "image: " + occupancy + "\nresolution: 0.05\norigin: [0, 0, 0]\n" +
+          (mode == 2 ? "semantic:\n  image: semantic.png\n  classes: [{name: door, color: [255, 0, 255]}]\n" : ""));
   try {
-    slamer::load_semantic_map(directory() + "/map.yaml");
+    slamer::load_semantic_map(yaml);
   } catch (const slamer::ConfigError& e) {
     if (std::string(e.what()).find('\n') != std::string::npos) {
       __builtin_trap();

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "test/support/temp_dir.hpp"
 #include "tools/launch/launch_check.hpp"
 #include "tools/launch/launch_file.hpp"
 #include "tools/launch/launch_sequence.hpp"
@@ -25,24 +26,7 @@ std::vector<std::string> search() {
   return {kBin, "/usr/bin", "/bin"};
 }
 
-// A fresh directory with files written into it.
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/slamer_launch_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string path = path_ + "/" + name;
-    std::ofstream(path) << text;
-    return path;
-  }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
+using test::TempDir;
 
 TEST(LaunchFile, ReadsEveryKeyAndResolvesTheConfigAgainstTheFile) {
   std::vector<std::string> problems;
@@ -71,7 +55,7 @@ TEST(LaunchFile, ReadsEveryKeyAndResolvesTheConfigAgainstTheFile) {
   EXPECT_TRUE(f.processes[1].respawn);
   EXPECT_EQ(f.processes[1].group, 0);
 
-  TempDir dir;
+  TempDir dir("slamer_launch_test");
   fs::create_directories(dir.path() + "/launch");
   const LaunchFile g = read_launch_file(
       dir.write("launch/l.yaml", "processes: [{name: a, program: p, config: ../c.yaml}]\n"), &problems);
@@ -139,7 +123,7 @@ TEST(LaunchFile, ExpandsOnlyLogAndRunDir) {
 }
 
 TEST(LaunchCheck, NamesTheConfigAndKeyOfWhatDoesNotLoad) {
-  TempDir dir;
+  TempDir dir("slamer_launch_test");
   dir.write("recognizer.yaml", "channels:\n  lidar: LIDAR\n  line_object: X\n");
   dir.write("localizer.yaml", "map: nowhere/map.yaml\n");
   const std::string launch =

@@ -1,8 +1,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -14,25 +12,12 @@
 #include "common/map/semantic_map.hpp"
 
 #include "test/support/child_process.hpp"
+#include "test/support/temp_dir.hpp"
 
 namespace slamer {
 namespace {
 
-namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/slamer_map_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  void write(const std::string& name, const std::string& text) const { std::ofstream(file(name)) << text; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 std::string load_error(const std::string& yaml_path) {
   try {
@@ -191,7 +176,7 @@ void write_occupancy_pgm(const std::string& path) {
 }
 
 TEST(SemanticMap, MapServerOccupancyWithThresholdsNegateAndYaw) {
-  TempDir dir;
+  TempDir dir("slamer_map_test");
   write_occupancy_pgm(dir.file("map.pgm"));
   dir.write("map.yaml",
             "image: map.pgm\nresolution: 0.1\norigin: [-1.0, 2.0, 0.5]\noccupied_thresh: 0.65\n"
@@ -234,7 +219,7 @@ void write_semantic_png(const std::string& path) {
 }
 
 TEST(SemanticMap, SemanticLayerWithClassTable) {
-  TempDir dir;
+  TempDir dir("slamer_map_test");
   write_occupancy_pgm(dir.file("map.pgm"));
   write_semantic_png(dir.file("semantic.png"));
   dir.write("map.yaml",
@@ -323,7 +308,7 @@ TEST(SemanticMap, AClassWithAMarginOfItsOwnKeepsFreeSpaceThatFarOff) {
 }
 
 TEST(SemanticMap, IsmYamlFormat) {
-  TempDir dir;
+  TempDir dir("slamer_map_test");
   write_occupancy_pgm(dir.file("ogm.pgm"));
   write_semantic_png(dir.file("ism.png"));
   dir.write("ogm.yaml",
@@ -354,7 +339,7 @@ TEST(SemanticMap, IsmYamlFormat) {
 }
 
 TEST(SemanticMap, BadMapsGiveOneLineNamingFileAndProblem) {
-  TempDir dir;
+  TempDir dir("slamer_map_test");
   write_occupancy_pgm(dir.file("map.pgm"));
   write_semantic_png(dir.file("semantic.png"));
   const std::string yaml = dir.file("bad.yaml");
