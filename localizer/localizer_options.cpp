@@ -3,8 +3,9 @@
 #include "common/config/config_reader.hpp"
 
 #include <algorithm>
-#include <array>
+#include <initializer_list>
 #include <stdexcept>
+#include <string_view>
 
 #include "common/robot/robot_options.hpp"
 #include "localizer/class_map_check.hpp"
@@ -23,6 +24,19 @@ LocalizerMode parse_mode(const std::string& text) {
   }
   throw std::invalid_argument("mode must be lfm, slfm or slamer, got '" + text + "'");
 }
+
+namespace {
+
+// An enum read as one of `names`, given in the enum's order.
+template <typename Enum>
+void read_enum(const ConfigReader& reader, std::string_view key, Enum* value,
+               std::initializer_list<std::string_view> names) {
+  std::string choice(names.begin()[static_cast<std::size_t>(*value)]);
+  reader.read_choice(key, &choice, names);
+  *value = static_cast<Enum>(std::find(names.begin(), names.end(), choice) - names.begin());
+}
+
+}  // namespace
 
 void read_options(const ConfigReader& reader, MotionOptions* o) {
   reader.read("alpha_rot_from_rot", &o->alpha_rot_from_rot, non_negative());
@@ -69,15 +83,8 @@ void read_options(const ConfigReader& reader, SlamerOptions* o) {
       margins.read(name, &o->free_space_class_margins[name], in_range(0.01, 2.0));
     }
   }
-  const std::array<std::string, 3> ends = {"scored", "left_out_for_free_space", "left_out"};
-  std::string end_choice = ends[static_cast<std::size_t>(o->spatial_line_ends)];
-  reader.read_choice("spatial_line_ends", &end_choice, {ends[0], ends[1], ends[2]});
-  o->spatial_line_ends = static_cast<SpatialLineEnds>(std::find(ends.begin(), ends.end(), end_choice) - ends.begin());
-  const std::array<std::string, 2> physical = {"mean", "farthest"};
-  std::string physical_choice = physical[static_cast<std::size_t>(o->physical_line_distance)];
-  reader.read_choice("physical_line_distance", &physical_choice, {physical[0], physical[1]});
-  o->physical_line_distance = static_cast<PhysicalLineDistance>(
-      std::find(physical.begin(), physical.end(), physical_choice) - physical.begin());
+  read_enum(reader, "spatial_line_ends", &o->spatial_line_ends, {"scored", "left_out_for_free_space", "left_out"});
+  read_enum(reader, "physical_line_distance", &o->physical_line_distance, {"mean", "farthest"});
   reader.read("unmapped_probability", &o->unmapped_probability, in_range(0.0, 0.99));
   reader.read("posterior_unmapped_probability", &o->posterior_unmapped_probability, in_range(0.0, 0.99));
   reader.read("object_weight", &o->object_weight, in_range(0.0, 10.0));
