@@ -10,6 +10,7 @@
 #include "common/process/atomic_file.hpp"
 #include "localizer/localizer_node.hpp"
 #include "localizer/saved_pose.hpp"
+#include "test/localizer/options_error.hpp"
 #include "test/localizer/small_world.hpp"
 
 namespace slamer {
@@ -112,6 +113,15 @@ TEST(LocalizerNode, AScanReadBeforeTheOdometryPastItsTimeWaitsForIt) {
   EXPECT_FALSE(node.poll(169'999).has_value());
   EXPECT_TRUE(node.poll(170'000).has_value());
   EXPECT_FALSE(node.health().odometry_missing);
+}
+
+TEST(LocalizerOptions, OdometryWaitIsANonNegativeSpanInSeconds) {
+  EXPECT_EQ(localizer_options_error("inputs: {odometry_wait: 0}\n"), "");
+  for (const char* bad : {"-0.01", "11", "nan", "soon"}) {
+    const std::string error = localizer_options_error(std::string("inputs: {odometry_wait: ") + bad + "}\n");
+    EXPECT_NE(error.find("'inputs.odometry_wait'"), std::string::npos) << bad << ": " << error;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  }
 }
 
 TEST(LocalizerNode, ScansWaitInOrderForTheirObjects) {
