@@ -2,6 +2,7 @@
 // table and the files it writes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -107,6 +108,36 @@ TEST(Settling, FromTheLastJumpOnceNineInTenSayOk) {
   }
   EXPECT_FALSE(settling(poses).scan.has_value());
   EXPECT_FALSE(settling({}).scan.has_value());
+}
+
+TEST(Settling, RunsAgreeFromTheScanAfterWhichAllStayWithinTheDistance) {
+  // Three runs of one log at 10 Hz: the first two track together; the third is
+  // elsewhere until scan 30, then joins them but strays 0.8 m at scan 50.
+  std::vector<std::vector<PoseReport>> runs(3);
+  for (int k = 0; k < 100; ++k) {
+    const int64_t utime = 1'000'000 + 100'000 * k;
+    const double x = 0.1 * k;
+    runs[0].push_back({utime, {x, 0.0, 0.0}, BenchStatus::kOk});
+    runs[1].push_back({utime, {x + 0.2, 0.0, 0.0}, BenchStatus::kOk});
+    const double off = k < 30 ? 12.0 : (k == 50 ? 0.8 : -0.1);
+    runs[2].push_back({utime, {x, off, 0.0}, BenchStatus::kUncertain});
+  }
+  runs[1].erase(runs[1].begin() + 70);  // a scan one run has no pose for is left out
+  const Agreement a = agreement(runs, 0.5);
+  EXPECT_EQ(a.scans, 99);
+  ASSERT_TRUE(a.scan.has_value());
+  EXPECT_EQ(*a.scan, 51);
+  EXPECT_NEAR(a.seconds, 5.1, 1e-9);
+  EXPECT_NEAR(a.spread_after, std::hypot(0.2, 0.1), 1e-9);  // the second run and the third
+  EXPECT_NEAR(a.spread_at_end, std::hypot(0.2, 0.1), 1e-9);
+  // Within 0.2 m never: the second run is 0.2 m ahead and the third 0.1 m aside.
+  EXPECT_FALSE(agreement(runs, 0.2).scan.has_value());
+  // Apart at the end: never, whatever came before.
+  runs[2].back().pose.y = 3.0;
+  const Agreement apart = agreement(runs, 0.5);
+  EXPECT_FALSE(apart.scan.has_value());
+  EXPECT_NEAR(apart.spread_at_end, std::hypot(0.2, 3.0), 1e-9);
+  EXPECT_THROW(agreement({runs[0]}, 0.5), std::invalid_argument);
 }
 
 TEST(BenchFiles, LocalizerConfigKeepsEverythingElse) {

@@ -171,6 +171,25 @@ TEST(DatasetTools, ImportMapAndBenchASyntheticCorrectedLog) {
   EXPECT_EQ(summary["fraction_lost"].get<double>(), 0.0);
   EXPECT_TRUE(std::filesystem::exists(dir + "/bench/errors.png"));
   EXPECT_NE(test::read_file(dir + "/bench/localizer.yaml").find("beam_step: 3"), std::string::npos);
+
+  // Another seed tracks too, so the two runs agree from the first scan; a
+  // single run cannot agree with anything.
+  test::ChildProcess other_seed(
+      test::binary_path("slamer-bench"),
+      {"--carmen", log, "--particles", "300", "--beams", "60", "--mode", "lfm", "--seed", "3", "--out", dir + "/bench3",
+       "--localizer-config", std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml"});
+  ASSERT_EQ(other_seed.wait(120), 0) << other_seed.stderr_text();
+  test::ChildProcess settle(test::binary_path("slamer-settle"),
+                            {"--agree", "0.5", dir + "/bench/localized.lcm", dir + "/bench3/localized.lcm"});
+  ASSERT_EQ(settle.wait(60), 0) << settle.stderr_text();
+  EXPECT_NE(
+      settle.stdout_text().find("the 2 runs agree within 0.50 m from scan 0 (0.0 s) of " + std::to_string(scans) + ";"),
+      std::string::npos)
+      << settle.stdout_text();
+  test::ChildProcess alone(test::binary_path("slamer-settle"), {"--agree", "0.5", dir + "/bench/localized.lcm"});
+  EXPECT_EQ(alone.wait(60), 2);
+  EXPECT_NE(alone.stderr_text().find("--agree takes a distance > 0 [m] and two LOGs or more"), std::string::npos)
+      << alone.stderr_text();
   std::filesystem::remove_all(dir);
 }
 

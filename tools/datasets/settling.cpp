@@ -1,6 +1,9 @@
 #include "tools/datasets/settling.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <stdexcept>
 
 namespace slamer {
 
@@ -33,6 +36,56 @@ Settling settling(const std::vector<PoseReport>& poses, double max_jump, double 
     }
   }
   return s;
+}
+
+Agreement agreement(const std::vector<std::vector<PoseReport>>& runs, double within) {
+  if (runs.size() < 2) {
+    throw std::invalid_argument("agreement needs two runs or more");
+  }
+  // Per scan utime, every run's pose; kept only where all runs have one.
+  std::map<int64_t, std::vector<Pose2>> by_scan;
+  for (const PoseReport& p : runs.front()) {
+    by_scan[p.utime] = {p.pose};
+  }
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    for (const PoseReport& p : runs[r]) {
+      const auto it = by_scan.find(p.utime);
+      if (it != by_scan.end() && it->second.size() == r) {
+        it->second.push_back(p.pose);
+      }
+    }
+  }
+  std::vector<int64_t> utimes;
+  std::vector<double> spread;
+  for (const auto& [utime, poses] : by_scan) {
+    if (poses.size() != runs.size()) {
+      continue;
+    }
+    double widest = 0.0;
+    for (std::size_t a = 0; a < poses.size(); ++a) {
+      for (std::size_t b = a + 1; b < poses.size(); ++b) {
+        widest = std::max(widest, std::hypot(poses[a].x - poses[b].x, poses[a].y - poses[b].y));
+      }
+    }
+    utimes.push_back(utime);
+    spread.push_back(widest);
+  }
+  Agreement a;
+  a.scans = static_cast<int64_t>(spread.size());
+  if (spread.empty()) {
+    return a;
+  }
+  a.spread_at_end = spread.back();
+  std::size_t k = spread.size();
+  while (k > 0 && spread[k - 1] <= within) {
+    --k;
+  }
+  if (k < spread.size()) {
+    a.scan = static_cast<int64_t>(k);
+    a.seconds = static_cast<double>(utimes[k] - utimes.front()) * 1e-6;
+    a.spread_after = *std::max_element(spread.begin() + static_cast<std::ptrdiff_t>(k), spread.end());
+  }
+  return a;
 }
 
 }  // namespace slamer

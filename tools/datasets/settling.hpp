@@ -5,6 +5,8 @@
 // at least `ok_fraction` of the poses say OK, that scan included. A settled
 // estimate is not thereby a right one: a look-alike place settles too, so runs
 // with other seeds or particle counts that end elsewhere say which is wrong.
+// Hence the second measure: from which scan independent runs of one log (other
+// seeds) agree, every pose of every run within `within` of the others' to the end.
 #pragma once
 
 #include <cstdint>
@@ -24,5 +26,16 @@ struct Settling {
 };
 
 Settling settling(const std::vector<PoseReport>& poses, double max_jump = 0.5, double ok_fraction = 0.9);
+
+struct Agreement {
+  int64_t scans = 0;            // scans every run has a pose for (matched by utime)
+  std::optional<int64_t> scan;  // the first of them from which the runs agree to the end; none: never
+  double seconds = 0.0;         // from the first of them to it
+  double spread_after = 0.0;    // the largest distance between two runs' poses from `scan` on [m]
+  double spread_at_end = 0.0;   // at the last scan [m]
+};
+
+// Needs two runs or more (std::invalid_argument otherwise).
+Agreement agreement(const std::vector<std::vector<PoseReport>>& runs, double within = 0.5);
 
 }  // namespace slamer

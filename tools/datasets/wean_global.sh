@@ -2,7 +2,8 @@
 # Global localization on the CMU 16-831 Wean Hall logs (no reference, unknown
 # start): converts wean.dat, imports robotdata1-5, runs slamer-localizer
 # --global (lfm, every beam) and prints after how many scans and seconds each
-# run settles (slamer-settle). Run from the repo root after building.
+# run settles and, with several seeds, from which scan the seeds' runs agree
+# within 0.5 m (slamer-settle). Run from the repo root after building.
 #   tools/datasets/wean_global.sh [OUT_DIR]
 #   environment: PARTICLES (5000), SEEDS ("1"), DATASETS (folder of the logs)
 set -euo pipefail
@@ -31,4 +32,10 @@ for k in 1 2 3 4 5; do
       --robot config/robots/cmu_wean.yaml --mode lfm --seed "$seed" --global --replay "$out/log$k.lcm" --out "$run.lcm"
     build/bin/slamer-settle "$run.lcm"
   done
+  # With several seeds: from which scan the runs agree (settled is not right).
+  runs=()
+  for seed in $seeds; do runs+=("$out/log$k-p$particles-s$seed.lcm"); done
+  if [ "${#runs[@]}" -ge 2 ]; then
+    build/bin/slamer-settle --agree 0.5 "${runs[@]}" | tail -n 1
+  fi
 done
