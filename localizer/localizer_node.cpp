@@ -240,6 +240,11 @@ std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
     return std::nullopt;
   }
   const Pending& oldest = pending_.front();
+  // The oldest scan stops waiting (for odometry or objects) at the end of the
+  // input, when too many are held, or once it has waited `wait` seconds.
+  const auto waited = [&](double wait) {
+    return flush || pending_.size() > kMaxWaiting || now_utime - oldest.arrival_utime >= microseconds(wait);
+  };
   // The odometry is interpolated to the scan's time: a scan that came before
   // the odometry past its time (a stalled host delivers both in a burst) waits
   // for it, up to odometry_wait, unless the odometry is missing. Otherwise the
@@ -247,15 +252,14 @@ std::optional<UpdateResult> LocalizerNode::poll(int64_t now_utime) {
   // a replay (the recognizer's objects logged right after their scan) did not
   // repeat the live run.
   const bool odometry_ready =
-      flush || odometry_.empty() || odometry_.back().first >= oldest.scan.utime ||
+      odometry_.empty() || odometry_.back().first >= oldest.scan.utime ||
       oldest.scan.utime - odometry_.back().first > microseconds(options_.inputs.odometry_timeout) ||
-      now_utime - oldest.arrival_utime >= microseconds(options_.inputs.odometry_wait) || pending_.size() > kMaxWaiting;
+      waited(options_.inputs.odometry_wait);
   if (!odometry_ready) {
     return std::nullopt;
   }
   const bool release =
-      !needs_objects() || oldest.objects || flush ||
-      now_utime - oldest.arrival_utime >= microseconds(options_.inputs.objects_wait) || pending_.size() > kMaxWaiting ||
+      !needs_objects() || oldest.objects || waited(options_.inputs.objects_wait) ||
       objects_missing(pending_.back().scan.utime) ||
       // The recognizer works in order: a later scan's objects mean these will not come.
       std::any_of(pending_.begin() + 1, pending_.end(), [](const Pending& p) { return p.objects.has_value(); }) ||
