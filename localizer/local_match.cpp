@@ -27,21 +27,10 @@ Rotated rotate(const ScanPoints& points, std::size_t step, double theta) {
   return r;
 }
 
+// The rotated points translated by (tx, ty) [cells].
 double score(const LikelihoodField& field, const Rotated& r, double tx, double ty) {
-  const GridGeometry& g = field.geometry();
-  const float width = static_cast<float>(g.width);
-  const float height = static_cast<float>(g.height);
-  const float fx = static_cast<float>(tx);
-  const float fy = static_cast<float>(ty);
-  double sum = 0.0;
-  for (std::size_t i = 0; i < r.x.size(); ++i) {
-    const float gx = r.x[i] + fx;
-    const float gy = r.y[i] + fy;
-    sum += gx >= 0.0f && gy >= 0.0f && gx < width && gy < height
-               ? field.log_likelihood(static_cast<int>(gx), static_cast<int>(gy))
-               : field.off_map_log_likelihood();
-  }
-  return sum;
+  return field.sum_placed(r.x.data(), r.y.data(), r.x.size(), 1.0f, 0.0f, static_cast<float>(tx),
+                          static_cast<float>(ty));
 }
 
 struct Scored {

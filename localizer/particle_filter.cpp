@@ -273,27 +273,19 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
   const float s = static_cast<float>(std::sin(grid.theta));
   const float tx = static_cast<float>(grid.x / geometry_.resolution);
   const float ty = static_cast<float>(grid.y / geometry_.resolution);
-  const float width = static_cast<float>(geometry_.width);
-  const float height = static_cast<float>(geometry_.height);
-  const bool slfm = options_.mode == LocalizerMode::kSlfm;
-  double sum = 0.0;
   const std::vector<float>& px = scan.points.x;
   const std::vector<float>& py = scan.points.y;
-  for (std::size_t i = 0; i < px.size(); ++i) {
-    const float gx = c * px[i] - s * py[i] + tx;
-    const float gy = s * px[i] + c * py[i] + ty;
-    const LikelihoodField* field = &field_;
-    if (slfm) {
+  double sum = 0.0;
+  if (options_.mode != LocalizerMode::kSlfm) {
+    sum = field_.sum_placed(px.data(), py.data(), px.size(), c, s, tx, ty);
+  } else {
+    sum = sum_terms(px.size(), [&](std::size_t i) {
       if (scan.field[i] < 0) {
-        continue;  // unknown class: the exponential model, the same for every pose
+        return 0.0f;  // unknown class: the exponential model, the same for every pose
       }
-      field = &class_fields_[static_cast<std::size_t>(scan.field[i])];
-    }
-    if (gx >= 0.0f && gy >= 0.0f && gx < width && gy < height) {
-      sum += field->log_likelihood(static_cast<int>(gx), static_cast<int>(gy));
-    } else {
-      sum += field->off_map_log_likelihood();
-    }
+      return class_fields_[static_cast<std::size_t>(scan.field[i])].cells()(c * px[i] - s * py[i] + tx,
+                                                                            s * px[i] + c * py[i] + ty);
+    });
   }
   return options_.lfm.beam_weight * sum;
 }

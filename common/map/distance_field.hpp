@@ -50,12 +50,21 @@ class DistanceField {
   double max_distance() const { return max_distance_; }
   double step() const { return step_; }  // [m per level]
 
+  // The lookup of level() by value: a hot loop takes one copy, so the tile
+  // table stays in registers (the build's -fno-strict-aliasing, which LCM's
+  // decoders need, would reload it through the field after every store).
+  struct Levels {
+    const uint8_t* const* tiles;
+    std::size_t tiles_x;
+    uint8_t operator()(int x, int y) const {
+      const std::size_t tile =
+          static_cast<std::size_t>(y >> kTileBits) * tiles_x + static_cast<std::size_t>(x >> kTileBits);
+      return tiles[tile][((y & (kTileSize - 1)) << kTileBits) | (x & (kTileSize - 1))];
+    }
+  };
+  Levels levels() const { return {tiles_.data(), static_cast<std::size_t>(tiles_x_)}; }
   // The quantized distance of an on-map cell, 0 .. kSaturated.
-  uint8_t level(int x, int y) const {
-    const std::size_t tile = static_cast<std::size_t>(y >> kTileBits) * static_cast<std::size_t>(tiles_x_) +
-                             static_cast<std::size_t>(x >> kTileBits);
-    return tiles_[tile][((y & (kTileSize - 1)) << kTileBits) | (x & (kTileSize - 1))];
-  }
+  uint8_t level(int x, int y) const { return levels()(x, y); }
   // Distance [m] at an on-map cell, at most max_distance (also when there is no target).
   float at(int x, int y) const { return static_cast<float>(level(x, y) * step_); }
   // Distance [m] of the cell containing a world point; nullopt off the map.

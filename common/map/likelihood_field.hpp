@@ -33,6 +33,26 @@ struct LikelihoodFieldOptions {
 // distance field for this model must reach. Throws like LikelihoodField.
 double likelihood_field_reach(const LikelihoodFieldOptions& options);
 
+// term(0) + ... + term(n - 1) in four running sums: with one, every term
+// would wait for the previous addition (a chain of 4-cycle latencies longer
+// than a field lookup). The terms are floats, so the double sums are nearly
+// always exact and the order does not change the result.
+template <class Term>
+double sum_terms(std::size_t n, const Term& term) {
+  double sums[4] = {0.0, 0.0, 0.0, 0.0};
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    sums[0] += term(i);
+    sums[1] += term(i + 1);
+    sums[2] += term(i + 2);
+    sums[3] += term(i + 3);
+  }
+  for (; i < n; ++i) {
+    sums[0] += term(i);
+  }
+  return (sums[0] + sums[1]) + (sums[2] + sums[3]);
+}
+
 class LikelihoodField {
  public:
   // Throws std::invalid_argument unless sigma_hit, range_max > 0, the weights
@@ -42,6 +62,28 @@ class LikelihoodField {
   const GridGeometry& geometry() const { return distances_->geometry(); }
   const DistanceField& distances() const { return *distances_; }
   float log_likelihood(int x, int y) const { return table_[distances_->level(x, y)]; }
+  // The lookup by grid coordinates, by value for hot loops (see DistanceField::Levels).
+  struct Cells {
+    DistanceField::Levels levels;
+    const float* table;
+    float off_map;
+    float width, height;  // [cells]
+    // Log-likelihood of an end point at (gx, gy) [cells from the grid's origin].
+    float operator()(float gx, float gy) const {
+      return gx >= 0.0f && gy >= 0.0f && gx < width && gy < height
+                 ? table[levels(static_cast<int>(gx), static_cast<int>(gy))]
+                 : off_map;
+    }
+  };
+  // Sum of the log-likelihoods of the n end points (x[i], y[i]) [cells, sensor
+  // frame] placed on the grid by the rotation (c, s) = (cos, sin) and the
+  // translation (tx, ty) [cells]: the same as summing cells()(c x - s y + tx,
+  // s x + c y + ty), four points at a time where it is one lookup each.
+  double sum_placed(const float* x, const float* y, std::size_t n, float c, float s, float tx, float ty) const;
+  Cells cells() const {
+    return {distances_->levels(), table_.data(), off_map_, static_cast<float>(geometry().width),
+            static_cast<float>(geometry().height)};
+  }
   float log_likelihood_at(const Eigen::Vector2d& world) const;
   float off_map_log_likelihood() const { return off_map_; }
   float max_range_log_likelihood() const { return max_range_; }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <opencv2/core.hpp>
@@ -161,6 +162,53 @@ TEST(LikelihoodField, HandComputedValues) {
   EXPECT_THROW(LikelihoodField(short_reach, options), std::invalid_argument);
   options.z_rand = 0.3;  // weights sum to 1.2
   EXPECT_THROW(LikelihoodField(obstacles, options), std::invalid_argument);
+}
+
+TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMap) {
+  // 100 x 70 cells: tiles cut at 32 in both axes, a partial tile at each far edge.
+  GridGeometry g{100, 70, 0.05, {}};
+  std::mt19937 rng(7);
+  std::vector<uint8_t> targets(g.size(), 0);
+  std::uniform_int_distribution<std::size_t> any_cell(0, g.size() - 1);
+  for (int k = 0; k < 60; ++k) {
+    targets[any_cell(rng)] = 1;
+  }
+  const LikelihoodField field(std::make_shared<const DistanceField>(g, targets, 1.5), LikelihoodFieldOptions{});
+  const LikelihoodField::Cells cells = field.cells();
+  // Points reaching 30 cells beyond every edge, and a few on the edges themselves.
+  std::uniform_real_distribution<float> coordinate(-80.0f, 80.0f);
+  std::vector<float> x, y;
+  for (int k = 0; k < 203; ++k) {
+    x.push_back(coordinate(rng));
+    y.push_back(coordinate(rng));
+  }
+  const float edges[][2] = {{0.0f, 0.0f},       {-0.0f, 5.0f}, {100.0f, 5.0f},
+                            {99.999f, 69.999f}, {5.0f, 70.0f}, {std::nanf(""), 3.0f}};
+  for (std::size_t k = 0; k < std::size(edges); ++k) {
+    x[20 + 7 * k] = edges[k][0];
+    y[20 + 7 * k] = edges[k][1];
+  }
+  int off_map = 0;
+  for (const auto& [c, s, tx, ty] : {std::array<float, 4>{1.0f, 0.0f, 0.0f, 0.0f},
+                                     {std::cos(0.7f), std::sin(0.7f), 50.0f, 35.0f},
+                                     {std::cos(-2.9f), std::sin(-2.9f), 12.5f, 60.25f}}) {
+    // Lengths around the vector width (4) and the block (64), and one that is neither.
+    for (const std::size_t n : {0, 3, 4, 63, 64, 65, 68, 203}) {
+      double expected = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const float gx = c * x[i] - s * y[i] + tx;
+        const float gy = s * x[i] + c * y[i] + ty;
+        const bool on_map = gx >= 0.0f && gy >= 0.0f && gx < 100.0f && gy < 70.0f;
+        off_map += on_map ? 0 : 1;
+        expected +=
+            on_map ? field.log_likelihood(static_cast<int>(gx), static_cast<int>(gy)) : field.off_map_log_likelihood();
+        EXPECT_EQ(cells(gx, gy), on_map ? field.log_likelihood(static_cast<int>(gx), static_cast<int>(gy))
+                                        : field.off_map_log_likelihood());
+      }
+      EXPECT_NEAR(field.sum_placed(x.data(), y.data(), n, c, s, tx, ty), expected, 1e-9) << n << " points";
+    }
+  }
+  EXPECT_GT(off_map, 100);  // both branches are exercised
 }
 
 // A 4x3 map image, top row first, as map_server reads it.
