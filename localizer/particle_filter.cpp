@@ -16,6 +16,9 @@ namespace {
 constexpr int kFreeSpace = -1;
 constexpr int kNoField = -2;
 constexpr double kClearance = 0.15;  // [m] global proposals keep the robot's centre this far from obstacles
+// The LFM field keeps its levels row-major up to this many cells (a byte
+// each: 200 m x 200 m at 5 cm), for the beams' lookups.
+constexpr std::size_t kDenseCellsMax = std::size_t{1} << 24;
 
 // How far the map's distance fields must reach: the LFM's likelihood field
 // and SLAMER's prior, which treats everything beyond 3 sigma_d as equally far.
@@ -61,7 +64,7 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
       mount_(lidar_mount),
       geometry_(map.geometry),
       obstacles_(std::make_shared<const DistanceField>(obstacle_distance_field(map, field_reach(options)))),
-      field_(obstacles_, options.lfm),
+      field_(obstacles_, options.lfm, kDenseCellsMax),
       free_distance_(std::make_shared<const DistanceField>(free_space_distance_field(map, field_reach(options)))),
       free_label_distance_(
           options.slamer.free_space_margin > 0.0 || !options.slamer.free_space_class_margins.empty()
@@ -88,7 +91,7 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
 }
 
 std::size_t ParticleFilter::map_memory_bytes() const {
-  std::size_t bytes = field_.distances().memory_bytes() + free_distance_->memory_bytes();
+  std::size_t bytes = field_.distances().memory_bytes() + field_.dense_bytes() + free_distance_->memory_bytes();
   if (free_label_distance_ != free_distance_) {
     bytes += free_label_distance_->memory_bytes();
   }

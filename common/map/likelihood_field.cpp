@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -32,7 +33,8 @@ double likelihood_field_reach(const LikelihoodFieldOptions& options) {
   return ratio > 1.0 ? options.sigma_hit * std::sqrt(2.0 * std::log(ratio)) : options.sigma_hit;
 }
 
-LikelihoodField::LikelihoodField(std::shared_ptr<const DistanceField> obstacles, const LikelihoodFieldOptions& options)
+LikelihoodField::LikelihoodField(std::shared_ptr<const DistanceField> obstacles, const LikelihoodFieldOptions& options,
+                                 std::size_t dense_cells_max)
     : distances_(std::move(obstacles)) {
   const double reach = likelihood_field_reach(options);
   if (distances_ == nullptr || distances_->max_distance() < reach) {
@@ -48,6 +50,16 @@ LikelihoodField::LikelihoodField(std::shared_ptr<const DistanceField> obstacles,
   }
   off_map_ = static_cast<float>(std::log(random));
   max_range_ = static_cast<float>(std::log(options.z_max + random));
+  const GridGeometry& g = geometry();
+  // Dense keys are int32 cell indices.
+  if (g.size() <= std::min<std::size_t>(dense_cells_max, std::numeric_limits<int32_t>::max())) {
+    dense_levels_.resize(g.size());
+    for (int y = 0; y < g.height; ++y) {
+      for (int x = 0; x < g.width; ++x) {
+        dense_levels_[g.index(x, y)] = distances_->level(x, y);
+      }
+    }
+  }
 }
 
 namespace {
@@ -61,30 +73,23 @@ constexpr std::size_t kBlock = 64;  // points placed before they are looked up
 constexpr int kCellBits = 2 * DistanceField::kTileBits;
 constexpr int32_t kOffMap = -1;
 
-}  // namespace
-
-double LikelihoodField::sum_placed(const float* x, const float* y, std::size_t n, float c, float s, float tx,
-                                   float ty) const {
-  const Cells f = cells();
-  // Where a point falls: its tile's index and its cell within the tile in one
-  // key (tile << kCellBits | cell), or kOffMap. The arithmetic is done a vector
-  // at a time, in the order the scalar code does it, so the keys are the same.
+// The sum of sum_placed, with `key(cx, cy)` where a point falls (cells, on
+// the grid; any non-negative int32 per cell) and `level(key)` the level there.
+// The points are placed a vector at a time, in the order the scalar code does
+// it, so the cells are the same; then looked up one by one.
+template <class Key, class Level>
+double sum_keyed(const LikelihoodField::Cells& f, const float* x, const float* y, std::size_t n, float c, float s,
+                 float tx, float ty, const Key& key, const Level& level) {
   const Floats vc = {c, c, c, c}, vs = {s, s, s, s}, vtx = {tx, tx, tx, tx}, vty = {ty, ty, ty, ty};
   const Floats width = {f.width, f.width, f.width, f.width}, height = {f.height, f.height, f.height, f.height};
   const Floats zero = {0.0f, 0.0f, 0.0f, 0.0f};
-  const int32_t tiles_x = static_cast<int32_t>(f.levels.tiles_x);
-  constexpr int32_t kMask = DistanceField::kTileSize - 1;
-  constexpr int kBits = DistanceField::kTileBits;
   // Four running sums, each in a register: one would make every lookup wait
   // for the previous addition.
   double sum0 = 0.0, sum1 = 0.0, sum2 = 0.0, sum3 = 0.0;
   int32_t keys[kBlock];
-  // Keys hold tiles up to 2^(31 - kCellBits), a map of 2^31 cells (2.3 km square
-  // at 5 cm); a larger one takes the scalar loop below for every point.
-  const std::size_t tiles_y = (static_cast<std::size_t>(geometry().height) + kMask) >> kBits;
-  const bool keys_fit = f.levels.tiles_x * tiles_y < (std::size_t{1} << (31 - kCellBits));
+  const auto term = [&](int32_t k) { return k == kOffMap ? f.off_map : f.table[level(k)]; };
   std::size_t i = 0;
-  for (; keys_fit && i + kLanes <= n;) {
+  while (i + kLanes <= n) {
     const std::size_t count = std::min(kBlock, (n - i) / kLanes * kLanes);
     for (std::size_t k = 0; k < count; k += kLanes) {
       Floats px, py;
@@ -96,14 +101,9 @@ double LikelihoodField::sum_placed(const float* x, const float* y, std::size_t n
       // Off the grid the coordinates may be anything: converted only where inside.
       const Ints cx = __builtin_convertvector(reinterpret_cast<Floats>(reinterpret_cast<Ints>(gx) & inside), Ints);
       const Ints cy = __builtin_convertvector(reinterpret_cast<Floats>(reinterpret_cast<Ints>(gy) & inside), Ints);
-      const Ints key =
-          (((cy >> kBits) * tiles_x + (cx >> kBits)) << kCellBits) | ((cy & kMask) << kBits) | (cx & kMask);
-      const Ints masked = (key & inside) | (~inside & kOffMap);
+      const Ints masked = (key(cx, cy) & inside) | (~inside & kOffMap);
       std::memcpy(keys + k, &masked, sizeof masked);
     }
-    const auto term = [&](int32_t key) {
-      return key == kOffMap ? f.off_map : f.table[f.levels.tiles[key >> kCellBits][key & ((1 << kCellBits) - 1)]];
-    };
     for (std::size_t k = 0; k < count; k += kLanes) {
       sum0 += term(keys[k]);
       sum1 += term(keys[k + 1]);
@@ -116,6 +116,36 @@ double LikelihoodField::sum_placed(const float* x, const float* y, std::size_t n
     sum0 += f(c * x[i] - s * y[i] + tx, s * x[i] + c * y[i] + ty);
   }
   return (sum0 + sum1) + (sum2 + sum3);
+}
+
+}  // namespace
+
+double LikelihoodField::sum_placed(const float* x, const float* y, std::size_t n, float c, float s, float tx,
+                                   float ty) const {
+  const Cells f = cells();
+  if (!dense_levels_.empty()) {
+    const int32_t width = geometry().width;
+    const uint8_t* levels = dense_levels_.data();
+    return sum_keyed(
+        f, x, y, n, c, s, tx, ty, [&](const Ints& cx, const Ints& cy) { return cy * width + cx; },
+        [&](int32_t key) { return levels[key]; });
+  }
+  // A tile's index and the cell within it in one key (tile << kCellBits | cell):
+  // up to 2^(31 - kCellBits) tiles, a map of 2^31 cells (2.3 km square at
+  // 5 cm); a larger one is summed point by point.
+  constexpr int kBits = DistanceField::kTileBits;
+  constexpr int32_t kMask = DistanceField::kTileSize - 1;
+  const std::size_t tiles_y = (static_cast<std::size_t>(geometry().height) + kMask) >> kBits;
+  if (f.levels.tiles_x * tiles_y >= (std::size_t{1} << (31 - kCellBits))) {
+    return sum_terms(n, [&](std::size_t i) { return f(c * x[i] - s * y[i] + tx, s * x[i] + c * y[i] + ty); });
+  }
+  const int32_t tiles_x = static_cast<int32_t>(f.levels.tiles_x);
+  return sum_keyed(
+      f, x, y, n, c, s, tx, ty,
+      [&](const Ints& cx, const Ints& cy) {
+        return (((cy >> kBits) * tiles_x + (cx >> kBits)) << kCellBits) | ((cy & kMask) << kBits) | (cx & kMask);
+      },
+      [&](int32_t key) { return f.levels.tiles[key >> kCellBits][key & ((1 << kCellBits) - 1)]; });
 }
 
 float LikelihoodField::log_likelihood_at(const Eigen::Vector2d& world) const {

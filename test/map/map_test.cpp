@@ -164,7 +164,7 @@ TEST(LikelihoodField, HandComputedValues) {
   EXPECT_THROW(LikelihoodField(obstacles, options), std::invalid_argument);
 }
 
-TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMap) {
+TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMapTiledOrDense) {
   // 100 x 70 cells: tiles cut at 32 in both axes, a partial tile at each far edge.
   GridGeometry g{100, 70, 0.05, {}};
   std::mt19937 rng(7);
@@ -173,7 +173,12 @@ TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMap) {
   for (int k = 0; k < 60; ++k) {
     targets[any_cell(rng)] = 1;
   }
-  const LikelihoodField field(std::make_shared<const DistanceField>(g, targets, 1.5), LikelihoodFieldOptions{});
+  const auto distances = std::make_shared<const DistanceField>(g, targets, 1.5);
+  const LikelihoodField field(distances, LikelihoodFieldOptions{});
+  const LikelihoodField dense(distances, LikelihoodFieldOptions{}, g.size());
+  EXPECT_EQ(field.dense_bytes(), 0u);
+  EXPECT_EQ(dense.dense_bytes(), g.size());
+  EXPECT_EQ(LikelihoodField(distances, LikelihoodFieldOptions{}, g.size() - 1).dense_bytes(), 0u);
   const LikelihoodField::Cells cells = field.cells();
   // Points reaching 30 cells beyond every edge, and a few on the edges themselves.
   std::uniform_real_distribution<float> coordinate(-80.0f, 80.0f);
@@ -206,6 +211,7 @@ TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMap) {
                                         : field.off_map_log_likelihood());
       }
       EXPECT_NEAR(field.sum_placed(x.data(), y.data(), n, c, s, tx, ty), expected, 1e-9) << n << " points";
+      EXPECT_NEAR(dense.sum_placed(x.data(), y.data(), n, c, s, tx, ty), expected, 1e-9) << n << " points, dense";
     }
   }
   EXPECT_GT(off_map, 100);  // both branches are exercised
