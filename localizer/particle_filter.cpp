@@ -215,7 +215,11 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
         }
       }
     }
-    prepared.field.push_back(field);
+    if (field >= 0) {
+      prepared.by_field.resize(std::max(prepared.by_field.size(), static_cast<std::size_t>(field) + 1));
+      prepared.by_field[static_cast<std::size_t>(field)].x.push_back(prepared.points.x.back());
+      prepared.by_field[static_cast<std::size_t>(field)].y.push_back(prepared.points.y.back());
+    }
   }
   return prepared;
 }
@@ -278,17 +282,14 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
   const float ty = static_cast<float>(grid.y / geometry_.resolution);
   const std::vector<float>& px = scan.points.x;
   const std::vector<float>& py = scan.points.y;
-  double sum = 0.0;
   if (options_.mode != LocalizerMode::kSlfm) {
-    sum = field_.sum_placed(px.data(), py.data(), px.size(), c, s, tx, ty);
-  } else {
-    sum = sum_terms(px.size(), [&](std::size_t i) {
-      if (scan.field[i] < 0) {
-        return 0.0f;  // unknown class: the exponential model, the same for every pose
-      }
-      return class_fields_[static_cast<std::size_t>(scan.field[i])].cells()(c * px[i] - s * py[i] + tx,
-                                                                            s * px[i] + c * py[i] + ty);
-    });
+    return options_.lfm.beam_weight * field_.sum_placed(px.data(), py.data(), px.size(), c, s, tx, ty);
+  }
+  // Beams of an unknown class are left out: the exponential model, the same for every pose.
+  double sum = 0.0;
+  for (std::size_t f = 0; f < scan.by_field.size(); ++f) {
+    const ScanPoints& points = scan.by_field[f];
+    sum += class_fields_[f].sum_placed(points.x.data(), points.y.data(), points.x.size(), c, s, tx, ty);
   }
   return options_.lfm.beam_weight * sum;
 }

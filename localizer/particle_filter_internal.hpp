@@ -12,7 +12,9 @@ namespace slamer {
 
 struct ParticleFilter::PreparedScan {
   ScanPoints points;       // used beams' end points in the sensor frame, in cells
-  std::vector<int> field;  // SLFM: class field per beam, -1 = unknown class (pose-independent)
+  // SLFM: the points of each class field (index = field); a beam of an unknown
+  // class is in none (pose-independent).
+  std::vector<ScanPoints> by_field;
 };
 
 struct ParticleFilter::PreparedObjects {
