@@ -11,7 +11,7 @@
 namespace slamer {
 
 struct ParticleFilter::PreparedScan {
-  ScanPoints points;       // used beams' end points in the sensor frame, in cells
+  ScanPoints points;  // used beams' end points in the sensor frame, in cells
   // SLFM: the points of each class field (index = field); a beam of an unknown
   // class is in none (pose-independent).
   std::vector<ScanPoints> by_field;
