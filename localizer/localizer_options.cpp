@@ -148,6 +148,8 @@ void read_options(const ConfigReader& reader, StatusOptions* o) {
   reader.read("odometry_disagreement", &o->odometry_disagreement, non_negative());
   reader.read("odometry_disagreement_time", &o->odometry_disagreement_time, in_range(0.1, 600.0));
   reader.read("odometry_disagreement_distance", &o->odometry_disagreement_distance, positive());
+  reader.read("along_track_gain", &o->along_track_gain, non_negative());
+  reader.read("along_track_time", &o->along_track_time, in_range(0.0, 600.0));
   if (!(o->fit_lost <= o->fit_uncertain && o->fit_uncertain < o->fit_expected)) {
     reader.fail("fit_uncertain", "needs fit_lost <= fit_uncertain < fit_expected");
   }

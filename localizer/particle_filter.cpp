@@ -122,6 +122,8 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   fit_smoothed_ = options_.status.fit_expected;
   fit_sustained_ = options_.status.fit_expected;
   last_fit_utime_.reset();
+  along_track_since_.reset();
+  along_track_slid_ = false;
   fresh_ = true;
   low_fit_scans_ = 0;
   lost_ = false;
@@ -460,6 +462,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
     agreement_.add(scan.utime, *last_pose_, result.estimate.pose, *odometry_forward_);
   }
   odometry_forward_.reset();
+  update_along_track(beams.points, result.estimate.pose, scan.utime);
   judge(&result.estimate);
   result.noise_gain = noise_gain_;
   // Learn the odometry's heading error only from scans the filter is sure of.

@@ -158,15 +158,18 @@ class ParticleFilter {
   void replace_least_likely(const std::vector<Pose2>& poses) { replace_least_likely(&particles_, poses); }
   static void replace_least_likely(std::vector<Particle>* set, const std::vector<Pose2>& poses);
   void update_fit(double fit, const PoseEstimate& e, int64_t utime);
-  // `with_odometry_agreement` false: the status from the scans alone (what the
-  // odometry correction learns from; its heading is not what a slide disagrees on).
+  // `with_slide_rules` false: without the rules that see a slide along the
+  // heading (the odometry agreement, the along-track evidence): what the
+  // odometry correction learns from; its heading is not what a slide disagrees on.
   struct StatusJudgement {
     LocalizerStatus status;
     const char* reason;  // a fixed text; "" when OK
   };
-  StatusJudgement status(const PoseEstimate& e, bool with_odometry_agreement = true) const;
+  StatusJudgement status(const PoseEstimate& e, bool with_slide_rules = true) const;
   // Sets e's status and its reason.
   void judge(PoseEstimate* e) const;
+  // The along-track evidence of this scan at the estimate (along_track.hpp).
+  void update_along_track(const ScanPoints& points, const Pose2& estimate, int64_t utime);
 
   LocalizerOptions options_;
   Pose2 mount_;
@@ -198,6 +201,10 @@ class ParticleFilter {
   // recovery found first is not taken for the right one.
   bool searching_ = false;
   double fit_sustained_ = 1.0;  // smoothed over status.fit_sustained_time
+  // Since when every scan has scored a pose along the heading better than the
+  // estimate (status.along_track_gain), while tracking; unset: not now.
+  std::optional<int64_t> along_track_since_;
+  bool along_track_slid_ = false;  // for status.along_track_time or longer
   std::optional<int64_t> last_fit_utime_;
   // require_confirmation(): scans since, and fitting scans in a row (-1: not required).
   int confirm_scans_seen_ = -1;

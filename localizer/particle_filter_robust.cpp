@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "localizer/along_track.hpp"
 #include "localizer/particle_filter_internal.hpp"
 
 namespace slamer {
@@ -48,7 +49,7 @@ void ParticleFilter::judge(PoseEstimate* e) const {
   e->status_reason = judged.reason;
 }
 
-ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bool with_odometry_agreement) const {
+ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bool with_slide_rules) const {
   using enum LocalizerStatus;
   if (!updated_) {
     return {kInitializing, "no scan yet"};
@@ -90,11 +91,29 @@ ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bo
   if (e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
     return {kUncertain, "a few particles carry the estimate"};
   }
-  if (with_odometry_agreement && options_.status.odometry_disagreement > 0.0 &&
+  if (with_slide_rules && along_track_slid_) {
+    return {kUncertain, "the scans have fitted a pose along the heading better for a while"};
+  }
+  if (with_slide_rules && options_.status.odometry_disagreement > 0.0 &&
       std::abs(agreement_.along_track()) > options_.status.odometry_disagreement) {
     return {kUncertain, "the estimate has lately moved far from what the odometry measured"};
   }
   return {kOk, ""};
+}
+
+void ParticleFilter::update_along_track(const ScanPoints& points, const Pose2& estimate, int64_t utime) {
+  const StatusOptions& o = options_.status;
+  // Only while tracking: searching, the status says UNCERTAIN anyway.
+  const bool preferred = o.along_track_gain > 0.0 && !global_ && !searching_ && !points.x.empty() &&
+                         along_track_preference(field_, points, mount_, estimate, {}).gain > o.along_track_gain;
+  if (!preferred || (along_track_since_ && utime < *along_track_since_)) {
+    along_track_since_.reset();
+  }
+  if (preferred && !along_track_since_) {
+    along_track_since_ = utime;
+  }
+  along_track_slid_ =
+      along_track_since_ && static_cast<double>(utime - *along_track_since_) * 1e-6 >= o.along_track_time;
 }
 
 void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime) {

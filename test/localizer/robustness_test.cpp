@@ -579,6 +579,9 @@ TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
             std::string::npos);
   EXPECT_NE(error_of("status: {odometry_disagreement_distance: 0}\n").find("'status.odometry_disagreement_distance'"),
             std::string::npos);
+  EXPECT_EQ(error_of("status: {along_track_gain: 0, along_track_time: 0}\n"), "");
+  EXPECT_NE(error_of("status: {along_track_gain: -0.1}\n").find("'status.along_track_gain'"), std::string::npos);
+  EXPECT_NE(error_of("status: {along_track_time: 601}\n").find("'status.along_track_time'"), std::string::npos);
 }
 
 TEST(ScanFit, FractionOfBeamsOnTheMapsObstacles) {

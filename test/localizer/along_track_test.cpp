@@ -1,0 +1,90 @@
+// Along-track evidence (localizer/along_track.hpp) and the status rule on it:
+// in a corridor whose walls fit from anywhere along it, a few posts say where
+// along it the robot is; an estimate 0.6 m off along the heading still fits
+// the walls, and the scans keep preferring the pose 0.6 m back.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "localizer/along_track.hpp"
+#include "localizer/localizer_options.hpp"
+#include "localizer/particle_filter.hpp"
+#include "test/localizer/small_world.hpp"
+
+namespace slamer {
+namespace {
+
+// 30 m x 3 m, posts 10 cm wide and 30 cm deep on the lower wall every 2 m
+// and on the upper every 3.5 m (together: every 14 m the same).
+SemanticMap posted_corridor() {
+  return grid_map(600, 60, [](int x, int y) {
+    return y == 0 || y == 59 || (y < 7 && x % 40 < 2) || (y >= 53 && (x + 13) % 70 < 2);
+  });
+}
+
+class AlongTrackTest : public ::testing::Test {
+ protected:
+  SemanticMap map = posted_corridor();
+  TrueWorld world{map, WorldOptions{}, "posted corridor"};
+  RobotOptions robot = load_options<RobotOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart_mini.yaml");
+  const Pose2 truth{15.1, 1.5, 0.0};
+  LaserScan scan = simulated_scan(world, robot, truth);
+};
+
+TEST_F(AlongTrackTest, PrefersThePoseTheScanWasTakenAtAlongTheHeading) {
+  const LikelihoodField field(std::make_shared<const DistanceField>(obstacle_distance_field(map, 1.2)), {});
+  const ScanPoints points = end_points(scan, map.geometry.resolution);
+  for (const double off : {0.6, -0.6}) {
+    const Pose2 ahead{truth.x + off, truth.y, truth.theta};
+    const AlongTrackPreference p = along_track_preference(field, points, robot.lidar.mount, ahead, {});
+    EXPECT_NEAR(p.shift, -off, 1e-9) << off;
+    EXPECT_GT(p.gain, StatusOptions{}.along_track_gain) << off;
+  }
+  // At the truth nothing along the heading scores better; with no points there is nothing to prefer.
+  const AlongTrackPreference at_truth = along_track_preference(field, points, robot.lidar.mount, truth, {});
+  EXPECT_EQ(at_truth.shift, 0.0);
+  EXPECT_EQ(at_truth.gain, 0.0);
+  const AlongTrackPreference none = along_track_preference(field, {}, robot.lidar.mount, truth, {});
+  EXPECT_EQ(none.shift, 0.0);
+  EXPECT_EQ(none.gain, 0.0);
+}
+
+// A cloud held 0.6 m ahead (tight, the local match off, the robot standing):
+// the walls fit, so the fit rules say OK; after along_track_time of scans
+// that prefer the pose behind it, the status says UNCERTAIN and why. The
+// poses are the same with the rule off.
+TEST_F(AlongTrackTest, AnEstimateTheScansKeepPlacingElsewhereAlongTheHeadingIsUncertain) {
+  LocalizerOptions options;
+  options.mode = LocalizerMode::kLfm;
+  options.particles = 300;
+  options.recovery.local.below = 0.0;
+  std::vector<UpdateResult> runs[2];
+  for (const double gain : {0.05, 0.0}) {
+    options.status.along_track_gain = gain;
+    ParticleFilter filter(map, options, robot.lidar.mount);
+    filter.initialize({truth.x + 0.6, truth.y, truth.theta}, {0.01, 0.01, 0.002});
+    for (int k = 0; k < 40; ++k) {  // 4 s at 10 Hz
+      scan.utime = 1'000'000 + k * 100'000;
+      runs[gain > 0.0 ? 0 : 1].push_back(filter.update(scan, nullptr));
+    }
+  }
+  for (std::size_t k = 0; k < runs[0].size(); ++k) {
+    const PoseEstimate& with = runs[0][k].estimate;
+    const PoseEstimate& without = runs[1][k].estimate;
+    EXPECT_EQ(with.pose.x, without.pose.x) << k;
+    EXPECT_GT(with.pose.x - truth.x, 0.4) << "the cloud stays ahead, scan " << k;
+    EXPECT_GT(runs[0][k].fit, 0.75) << "the walls fit, scan " << k;
+    if (k >= 5) {  // once the first scans' spread has settled
+      EXPECT_EQ(without.status, LocalizerStatus::kOk) << k << ": " << without.status_reason;
+    }
+    if (k >= 20) {  // 2 s after the first scan
+      EXPECT_EQ(with.status, LocalizerStatus::kUncertain) << k;
+      EXPECT_STREQ(with.status_reason, "the scans have fitted a pose along the heading better for a while") << k;
+    } else if (k >= 5) {
+      EXPECT_EQ(with.status, LocalizerStatus::kOk) << k << ": " << with.status_reason;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace slamer
