@@ -150,6 +150,7 @@ void read_options(const ConfigReader& reader, StatusOptions* o) {
   reader.read("odometry_disagreement_distance", &o->odometry_disagreement_distance, positive());
   reader.read("along_track_gain", &o->along_track_gain, non_negative());
   reader.read("along_track_time", &o->along_track_time, in_range(0.0, 600.0));
+  reader.read("along_track_scans", &o->along_track_scans, at_least(1));
   if (!(o->fit_lost <= o->fit_uncertain && o->fit_uncertain < o->fit_expected)) {
     reader.fail("fit_uncertain", "needs fit_lost <= fit_uncertain < fit_expected");
   }

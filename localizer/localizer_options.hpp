@@ -176,10 +176,12 @@ struct StatusOptions {
   double odometry_disagreement_distance = 5.0;  // [m]
   // The scans scoring a pose along the estimate's heading (0.4-1.0 m ahead or
   // behind, along_track.hpp) better than the estimate by more than
-  // along_track_gain per beam, scan after scan for along_track_time: UNCERTAIN
-  // (a slide along a corridor the fit cannot show; 0: never).
-  double along_track_gain = 0.05;  // [log-likelihood per beam]
-  double along_track_time = 2.0;   // [s]
+  // along_track_gain per beam, scan after scan for along_track_time and
+  // along_track_scans (a log with a scan every 3 s is not 1 s of evidence):
+  // UNCERTAIN (a slide along a corridor the fit cannot show; 0: never).
+  double along_track_gain = 0.02;  // [log-likelihood per beam]
+  double along_track_time = 1.0;   // [s]
+  int along_track_scans = 10;
   bool operator==(const StatusOptions&) const = default;
 };
 

@@ -123,6 +123,7 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   fit_sustained_ = options_.status.fit_expected;
   last_fit_utime_.reset();
   along_track_since_.reset();
+  along_track_scans_ = 0;
   along_track_slid_ = false;
   fresh_ = true;
   low_fit_scans_ = 0;

@@ -204,7 +204,8 @@ class ParticleFilter {
   // Since when every scan has scored a pose along the heading better than the
   // estimate (status.along_track_gain), while tracking; unset: not now.
   std::optional<int64_t> along_track_since_;
-  bool along_track_slid_ = false;  // for status.along_track_time or longer
+  int along_track_scans_ = 0;      // scans since along_track_since_, this one included
+  bool along_track_slid_ = false;  // for status.along_track_time and _scans or longer
   std::optional<int64_t> last_fit_utime_;
   // require_confirmation(): scans since, and fitting scans in a row (-1: not required).
   int confirm_scans_seen_ = -1;

@@ -108,12 +108,14 @@ void ParticleFilter::update_along_track(const ScanPoints& points, const Pose2& e
                          along_track_preference(field_, points, mount_, estimate, {}).gain > o.along_track_gain;
   if (!preferred || (along_track_since_ && utime < *along_track_since_)) {
     along_track_since_.reset();
+    along_track_scans_ = 0;
   }
   if (preferred && !along_track_since_) {
     along_track_since_ = utime;
   }
-  along_track_slid_ =
-      along_track_since_ && static_cast<double>(utime - *along_track_since_) * 1e-6 >= o.along_track_time;
+  along_track_scans_ += preferred ? 1 : 0;
+  along_track_slid_ = along_track_since_ && along_track_scans_ >= o.along_track_scans &&
+                      static_cast<double>(utime - *along_track_since_) * 1e-6 >= o.along_track_time;
 }
 
 void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime) {

@@ -582,6 +582,7 @@ TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
   EXPECT_EQ(error_of("status: {along_track_gain: 0, along_track_time: 0}\n"), "");
   EXPECT_NE(error_of("status: {along_track_gain: -0.1}\n").find("'status.along_track_gain'"), std::string::npos);
   EXPECT_NE(error_of("status: {along_track_time: 601}\n").find("'status.along_track_time'"), std::string::npos);
+  EXPECT_NE(error_of("status: {along_track_scans: 0}\n").find("'status.along_track_scans'"), std::string::npos);
 }
 
 TEST(ScanFit, FractionOfBeamsOnTheMapsObstacles) {
