@@ -7,10 +7,10 @@
 // saying OK, while a pose 0.6-1.0 m along the heading scored 10-40 nats
 // better over 90 beams than the estimate in most of those scans; on the
 // CARMEN logs, whose estimates are right, a scan scores a pose that far along
-// better by even 2 nats in 0.2-0.5 % of the scans, never for more than 5 in a
-// row. This scores the scan on the likelihood field (the LFM's, Eqs. (10)-(13))
-// at the estimate and at poses shifted along its heading, so the status can
-// say UNCERTAIN while the scans keep preferring a pose elsewhere on that line.
+// better by even 2 nats in 0.2-0.5 % of the scans, never 10 in a row. This
+// scores the scan on the likelihood field (the LFM's, Eqs. (10)-(13)) at the
+// estimate and at poses shifted along its heading, so the status can say
+// UNCERTAIN while the scans keep preferring a pose elsewhere on that line.
 #pragma once
 
 #include "common/geometry/se2.hpp"
@@ -27,8 +27,8 @@ struct AlongTrackShifts {
 };
 
 struct AlongTrackPreference {
-  double shift =
-      0.0;            // [m] along the heading (negative: behind) of the best-scoring pose; 0 if none beats the estimate
+  // [m] along the heading (negative: behind) of the best-scoring pose; 0 if none beats the estimate.
+  double shift = 0.0;
   double gain = 0.0;  // its log-likelihood minus the estimate's, per end point used (>= 0)
 };
 
