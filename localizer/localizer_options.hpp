@@ -179,8 +179,8 @@ struct StatusOptions {
   // along_track_gain per beam, scan after scan for along_track_time and
   // along_track_scans (a log with a scan every 3 s is not 1 s of evidence):
   // UNCERTAIN (a slide along a corridor the fit cannot show; 0: never).
-  double along_track_gain = 0.02;  // [log-likelihood per beam]
-  double along_track_time = 1.0;   // [s]
+  double along_track_gain = 0.05;  // [log-likelihood per beam]
+  double along_track_time = 2.0;   // [s]
   int along_track_scans = 10;
   bool operator==(const StatusOptions&) const = default;
 };
