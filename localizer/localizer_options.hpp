@@ -177,7 +177,7 @@ struct StatusOptions {
   // The scans scoring a pose along the estimate's heading (0.4-1.0 m ahead or
   // behind, along_track.hpp) better than the estimate by more than
   // along_track_gain per beam, scan after scan for along_track_time and
-  // along_track_scans (a log with a scan every 3 s is not 1 s of evidence):
+  // along_track_scans (two scans of a log with one every 3 s are not evidence):
   // UNCERTAIN (a slide along a corridor the fit cannot show; 0: never).
   double along_track_gain = 0.05;  // [log-likelihood per beam]
   double along_track_time = 2.0;   // [s]

@@ -53,12 +53,13 @@ LikelihoodField::LikelihoodField(std::shared_ptr<const DistanceField> obstacles,
   const GridGeometry& g = geometry();
   // Dense keys are int32 cell indices.
   if (g.size() <= std::min<std::size_t>(dense_cells_max, std::numeric_limits<int32_t>::max())) {
-    dense_levels_.resize(g.size());
+    auto levels = std::make_shared<std::vector<uint8_t>>(g.size());
     for (int y = 0; y < g.height; ++y) {
       for (int x = 0; x < g.width; ++x) {
-        dense_levels_[g.index(x, y)] = distances_->level(x, y);
+        (*levels)[g.index(x, y)] = distances_->level(x, y);
       }
     }
+    dense_levels_ = std::move(levels);
   }
 }
 
@@ -123,9 +124,9 @@ double sum_keyed(const LikelihoodField::Cells& f, const float* x, const float* y
 double LikelihoodField::sum_placed(const float* x, const float* y, std::size_t n, float c, float s, float tx,
                                    float ty) const {
   const Cells f = cells();
-  if (!dense_levels_.empty()) {
+  if (dense_levels_) {
     const int32_t width = geometry().width;
-    const uint8_t* levels = dense_levels_.data();
+    const uint8_t* levels = dense_levels_->data();
     return sum_keyed(
         f, x, y, n, c, s, tx, ty, [&](const Ints& cx, const Ints& cy) { return cy * width + cx; },
         [&](int32_t key) { return levels[key]; });

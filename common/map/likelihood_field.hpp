@@ -93,14 +93,15 @@ class LikelihoodField {
   float log_likelihood_at(const Eigen::Vector2d& world) const;
   float off_map_log_likelihood() const { return off_map_; }
   float max_range_log_likelihood() const { return max_range_; }
-  std::size_t dense_bytes() const { return dense_levels_.size(); }
+  std::size_t dense_bytes() const { return dense_levels_ ? dense_levels_->size() : 0; }
 
  private:
   std::shared_ptr<const DistanceField> distances_;
   std::array<float, DistanceField::kSaturated + 1> table_{};  // per distance level
   float off_map_ = 0.0f;
   float max_range_ = 0.0f;
-  std::vector<uint8_t> dense_levels_;  // row-major, or empty
+  // Row-major, or null; shared, so copies of the field share it as they share the distances.
+  std::shared_ptr<const std::vector<uint8_t>> dense_levels_;
 };
 
 }  // namespace slamer
