@@ -9,28 +9,16 @@ namespace slamer {
 
 namespace {
 
-// The grid's fast path: the thinned end points rotated once per heading, then
-// a translation and a table lookup per point and pose (field_log_likelihood
-// rotates every point for every pose, as the refinement's few poses need).
-struct Rotated {
-  std::vector<float> x, y;
-};
-
-Rotated rotate(const ScanPoints& points, std::size_t step, double theta) {
-  const float c = static_cast<float>(std::cos(theta));
-  const float s = static_cast<float>(std::sin(theta));
-  Rotated r;
+// The grid's fast path: the scan thinned once, then each pose's points placed
+// and looked up by the field's vectorised sum (field_log_likelihood thins as
+// it goes, as the refinement's few poses need).
+ScanPoints thin(const ScanPoints& points, std::size_t step) {
+  ScanPoints thinned;
   for (std::size_t i = 0; i < points.x.size(); i += step) {
-    r.x.push_back(c * points.x[i] - s * points.y[i]);
-    r.y.push_back(s * points.x[i] + c * points.y[i]);
+    thinned.x.push_back(points.x[i]);
+    thinned.y.push_back(points.y[i]);
   }
-  return r;
-}
-
-// The rotated points translated by (tx, ty) [cells].
-double score(const LikelihoodField& field, const Rotated& r, double tx, double ty) {
-  return field.sum_placed(r.x.data(), r.y.data(), r.x.size(), 1.0f, 0.0f, static_cast<float>(tx),
-                          static_cast<float>(ty));
+  return thinned;
 }
 
 struct Scored {
@@ -89,14 +77,19 @@ LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points,
   const int side = 2 * shifts + 1;
   const auto index = [&](int k, int iy, int ix) { return ((k + turns) * side + (iy + shifts)) * side + ix + shifts; };
   std::vector<Scored> grid(static_cast<std::size_t>((2 * turns + 1) * side * side));
+  const ScanPoints thinned = thin(points, step);
   for (int k = -turns; k <= turns; ++k) {
     const double theta = start.theta + k * turn_step;
-    const Rotated r = rotate(points, step, theta);
+    const float c = static_cast<float>(std::cos(theta));
+    const float s = static_cast<float>(std::sin(theta));
     for (int iy = -shifts; iy <= shifts; ++iy) {
       for (int ix = -shifts; ix <= shifts; ++ix) {
         const double x = start.x + ix * step_cells;
         const double y = start.y + iy * step_cells;
-        grid[static_cast<std::size_t>(index(k, iy, ix))] = {{x, y, theta}, score(field, r, x, y)};
+        grid[static_cast<std::size_t>(index(k, iy, ix))] = {
+            {x, y, theta},
+            field.sum_placed(thinned.x.data(), thinned.y.data(), thinned.x.size(), c, s, static_cast<float>(x),
+                             static_cast<float>(y))};
       }
     }
   }

@@ -60,16 +60,13 @@ double scan_fit(const DistanceField& obstacles, const ScanPoints& points, const 
 
 double field_log_likelihood(const LikelihoodField& field, const ScanPoints& points, const Pose2& sensor,
                             std::size_t step) {
-  const float c = static_cast<float>(std::cos(sensor.theta));
-  const float s = static_cast<float>(std::sin(sensor.theta));
-  const float tx = static_cast<float>(sensor.x);
-  const float ty = static_cast<float>(sensor.y);
+  const GridPlacer place(field.geometry(), sensor);
   const LikelihoodField::Cells cells = field.cells();
-  const std::vector<float>& px = points.x;
-  const std::vector<float>& py = points.y;
-  return sum_terms((px.size() + step - 1) / step, [&](std::size_t k) {
-    const std::size_t i = k * step;
-    return cells(c * px[i] - s * py[i] + tx, s * px[i] + c * py[i] + ty);
+  return sum_terms((points.x.size() + step - 1) / step, [&](std::size_t k) {
+    int cx = 0;
+    int cy = 0;
+    return place.cell(points.x[k * step], points.y[k * step], &cx, &cy) ? cells.table[cells.levels(cx, cy)]
+                                                                        : cells.off_map;
   });
 }
 
