@@ -14,13 +14,7 @@
 #include <random>
 
 #include "common/stats/status_honesty.hpp"
-#include "localizer/localizer_messages.hpp"
 #include "localizer/localizer_node.hpp"
-#include "localizer/motion_model.hpp"
-#include "localizer/odometry_agreement.hpp"
-#include "localizer/scan_fit.hpp"
-#include "slamer/process_status_t.hpp"
-#include "test/localizer/options_error.hpp"
 #include "test/localizer/small_world.hpp"
 #include "tools/sim/simulator.hpp"
 
@@ -484,135 +478,6 @@ TEST(Robustness, AnEstimateThatTravelsFarFromWhatTheOdometrySaysIsUncertain) {
   EXPECT_LT(max_error, 0.4);                   // the scans held the pose (0.30 m)
   EXPECT_LT(uncertain_without, window / 10);   // and the fit alone stays OK
   EXPECT_GT(uncertain_with, 9 * window / 10);  // the disagreement does not
-}
-
-// PROCESS_STATUS says why the pose is not OK, in the filter's words.
-TEST(ProcessState, SaysWhyThePoseIsUncertainOrLost) {
-  const InputHealth health;
-  const LocalizerChannels channels;
-  const auto uncertain = process_state(LocalizerStatus::kUncertain, "the particles are spread", health, channels);
-  EXPECT_EQ(uncertain.first, process_status_t::DEGRADED);
-  EXPECT_EQ(uncertain.second, "uncertain: the particles are spread");
-  const auto lost = process_state(LocalizerStatus::kLost, "the scans do not fit the map", health, channels);
-  EXPECT_EQ(lost.first, process_status_t::ERROR);
-  EXPECT_EQ(lost.second, "lost: the scans do not fit the map");
-  const auto ok = process_state(LocalizerStatus::kOk, "", health, channels);
-  EXPECT_EQ(ok.first, process_status_t::OK);
-  EXPECT_EQ(ok.second, "");
-}
-
-TEST(OdometryAgreement, TheEstimatesTravelAlongItsHeadingAgainstTheOdometrysOverTheWindow) {
-  OdometryAgreement agreement(2.0, 100.0);
-  const double heading = 0.7;
-  Pose2 pose{1.0, 2.0, heading};
-  const auto move = [&](double forward, double sideways) {
-    return Pose2{pose.x + forward * std::cos(heading) - sideways * std::sin(heading),
-                 pose.y + forward * std::sin(heading) + sideways * std::cos(heading), heading};
-  };
-  int64_t utime = 0;
-  // 1 s agreeing at 0.6 m/s, and moving sideways (heading drift's part) does not count.
-  for (int k = 0; k < 10; ++k, utime += 100'000) {
-    const Pose2 next = move(0.06, 0.02);
-    agreement.add(utime, pose, next, 0.06);
-    pose = next;
-  }
-  EXPECT_NEAR(agreement.along_track(), 0.0, 1e-12);
-  // 1 s where the estimate goes half as far as the wheels: -0.3 m.
-  for (int k = 0; k < 10; ++k, utime += 100'000) {
-    const Pose2 next = move(0.03, 0.0);
-    agreement.add(utime, pose, next, 0.06);
-    pose = next;
-  }
-  EXPECT_NEAR(agreement.along_track(), -0.3, 1e-9);
-  // Backwards both: agreeing.
-  agreement.add(utime, pose, move(-0.05, 0.0), -0.05);
-  EXPECT_NEAR(agreement.along_track(), -0.3, 1e-9);
-  // 2 s later the slow second has left the window.
-  for (int k = 0; k < 20; ++k, utime += 100'000) {
-    agreement.add(utime, pose, move(0.06, 0.0), 0.06);
-  }
-  EXPECT_NEAR(agreement.along_track(), 0.0, 1e-9);
-  // Time going back starts over; NaN is ignored; a window of 0 is off.
-  agreement.add(utime, pose, move(0.5, 0.0), 0.0);
-  EXPECT_NEAR(agreement.along_track(), 0.5, 1e-9);
-  agreement.add(utime - 5'000'000, pose, move(0.1, 0.0), 0.0);
-  EXPECT_NEAR(agreement.along_track(), 0.1, 1e-9);
-  agreement.add(utime, pose, move(0.1, 0.0), std::nan(""));
-  EXPECT_NEAR(agreement.along_track(), 0.1, 1e-9);
-  OdometryAgreement off(0.0, 5.0);
-  off.add(0, pose, move(1.0, 0.0), 0.0);
-  EXPECT_EQ(off.along_track(), 0.0);
-}
-
-// The window ends where the odometry has driven `distance`: 1 m steps (a
-// sparse log) each 5 % short add up over 10 s to 0.5 m, over the last 3 m to 0.15 m.
-TEST(OdometryAgreement, TheWindowEndsWhereTheOdometryHasDrivenTheDistance) {
-  OdometryAgreement agreement(10.0, 3.0);
-  Pose2 pose;
-  for (int k = 0; k < 10; ++k) {
-    const Pose2 next{pose.x + 0.95, 0.0, 0.0};
-    agreement.add(100'000LL * k, pose, next, 1.0);
-    pose = next;
-  }
-  EXPECT_NEAR(agreement.along_track(), -0.15, 1e-9);
-  OdometryAgreement by_time(10.0, 100.0);
-  pose = {};
-  for (int k = 0; k < 10; ++k) {
-    const Pose2 next{pose.x + 0.95, 0.0, 0.0};
-    by_time.add(100'000LL * k, pose, next, 1.0);
-    pose = next;
-  }
-  EXPECT_NEAR(by_time.along_track(), -0.5, 1e-9);
-}
-
-TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
-  const auto error_of = localizer_options_error;
-  EXPECT_EQ(error_of("status: {fit_confirm: 0.75, fit_sustained: 0.65}\n"), "");
-  EXPECT_NE(error_of("status: {fit_confirm: 0.95}\n").find("'status.fit_confirm'"), std::string::npos)
-      << error_of("status: {fit_confirm: 0.95}\n");
-  EXPECT_NE(error_of("status: {fit_sustained: 0.4}\n").find("'status.fit_sustained'"), std::string::npos)
-      << error_of("status: {fit_sustained: 0.4}\n");
-  EXPECT_NE(error_of("status: {fit_sustained_time: 0}\n").find("'status.fit_sustained_time'"), std::string::npos);
-  EXPECT_NE(error_of("status: {odometry_disagreement: -0.1}\n").find("'status.odometry_disagreement'"),
-            std::string::npos);
-  EXPECT_NE(error_of("status: {odometry_disagreement_time: 0}\n").find("'status.odometry_disagreement_time'"),
-            std::string::npos);
-  EXPECT_NE(error_of("status: {odometry_disagreement_distance: 0}\n").find("'status.odometry_disagreement_distance'"),
-            std::string::npos);
-  EXPECT_EQ(error_of("status: {along_track_gain: 0, along_track_time: 0}\n"), "");
-  EXPECT_NE(error_of("status: {along_track_gain: -0.1}\n").find("'status.along_track_gain'"), std::string::npos);
-  EXPECT_NE(error_of("status: {along_track_time: 601}\n").find("'status.along_track_time'"), std::string::npos);
-  EXPECT_NE(error_of("status: {along_track_scans: 0}\n").find("'status.along_track_scans'"), std::string::npos);
-}
-
-TEST(ScanFit, FractionOfBeamsOnTheMapsObstacles) {
-  const SmallWorld w;
-  const DistanceField obstacles = obstacle_distance_field(w.map, 1.0);
-  const Pose2 truth{2.0, 3.0, 0.0};
-  const LaserScan scan = w.scan_at(truth);
-  const ScanPoints points = end_points(scan, w.map.geometry.resolution);
-  const auto fit = [&](const Pose2& pose) {
-    return scan_fit(obstacles, points, sensor_in_cells(w.map.geometry, pose, w.robot.lidar.mount), 0.1);
-  };
-  EXPECT_GT(fit(truth), 0.85);  // the box the map does not have takes some beams
-  EXPECT_LT(fit({2.3, 3.0, 0.0}), 0.6);
-  EXPECT_LT(fit({2.0, 3.0, 0.1}), 0.6);
-  EXPECT_LT(fit({8.5, 1.2, 2.5}), 0.3);
-  EXPECT_EQ(scan_fit(obstacles, {}, {}, 0.1), 0.0);
-}
-
-TEST(MotionModel, ZeroIncrementSpreadsOnlyWhenTheGainIsUp) {
-  LocalizerOptions o;
-  std::mt19937 rng(2);
-  const OdometryIncrement zero{};
-  double spread_rest = 0.0;
-  double spread_up = 0.0;
-  for (int i = 0; i < 2000; ++i) {
-    spread_rest = std::max(spread_rest, std::abs(sample_motion({}, zero, o.motion, rng, 1.0).theta));
-    spread_up += std::pow(sample_motion({}, zero, o.motion, rng, 4.0).theta, 2);
-  }
-  EXPECT_EQ(spread_rest, 0.0);  // a filter that explains its scans keeps the configured noise
-  EXPECT_NEAR(std::sqrt(spread_up / 2000), 3.0 * o.motion.noise_floor_rot, 0.1 * 3.0 * o.motion.noise_floor_rot);
 }
 
 }  // namespace
