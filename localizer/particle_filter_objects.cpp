@@ -2,8 +2,8 @@
 // objects (paper Eqs. (7)-(9)): each object's samples placed on the map's
 // class distance fields at the particle's pose, the map prior of Eq. (7) per
 // recognition class, the Dirichlet recognition likelihood of Eq. (8) with the
-// training prior divided out, summed over classes as Eq. (9). Also the class
-// posteriors of the scan's objects (the same terms at the best particle).
+// training prior divided out, summed over classes as Eq. (9). The per-class
+// terms at the best particle are what update() makes the class posteriors of.
 // Split from particle_filter.cpp for size.
 #include <algorithm>
 #include <cmath>
