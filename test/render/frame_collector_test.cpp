@@ -4,7 +4,6 @@
 
 #include "common/process/convert.hpp"
 #include "slamer/particles_t.hpp"
-#include "slamer/pose_estimate_t.hpp"
 
 namespace slamer {
 namespace {
@@ -25,10 +24,7 @@ std::vector<uint8_t> scan_at(int64_t utime) {
 }
 
 std::vector<uint8_t> pose(int64_t utime, double x) {
-  pose_estimate_t m{};
-  m.utime = utime;
-  m.x = x;
-  return encoded(m);
+  return encoded(make_exact_pose(utime, {x, 0.0, 0.0}));
 }
 
 // Each kept scan becomes a frame when the next scan comes, with what was
