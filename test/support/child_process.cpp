@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -118,8 +119,14 @@ std::string ChildProcess::stderr_text() const {
 }
 
 std::string unique_lcm_url(int salt) {
-  // Ports 20000-59999 by process id: ctest runs each test case as its own process.
-  const int port = 20000 + (static_cast<int>(getpid()) * 7 + salt) % 40000;
+  // Ports 20000-59999 from a hash of the process id and the salt: ctest runs each test case as its
+  // own process, several at once and often with consecutive ids. The former (pid * 7 + salt) gave
+  // process p's salt s and process p + 1's salt s - 7 one port, so two tests read each other's messages.
+  uint64_t h = (static_cast<uint64_t>(getpid()) << 20) ^ static_cast<uint64_t>(static_cast<uint32_t>(salt));
+  h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;  // splitmix64's finalizer
+  h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+  h ^= h >> 31;
+  const int port = 20000 + static_cast<int>(h % 40000);
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
 }
 

@@ -33,7 +33,8 @@ class ChildProcess {
   std::string dir_;
 };
 
-// A multicast LCM URL on loopback with a port no other test process uses.
+// A multicast LCM URL on loopback; another test process running at the same time has its port
+// with odds of 1 in 40000 (per pair of URLs).
 std::string unique_lcm_url(int salt);
 
 std::string binary_path(const std::string& name);  // build-tree bin/NAME
