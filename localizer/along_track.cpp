@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace slamer {
 
@@ -17,8 +18,8 @@ AlongTrackPreference along_track_preference(const LikelihoodField& field, const 
     return field_log_likelihood(field, points, sensor_in_cells(field.geometry(), pose, mount), step);
   };
   const double at_base = score(base);
-  AlongTrackPreference best;
-  double best_score = at_base;
+  double best_shifted = -std::numeric_limits<double>::infinity();
+  double best_shift = 0.0;
   const double c = std::cos(base.theta);
   const double s = std::sin(base.theta);
   const int count = static_cast<int>(std::floor((shifts.farthest - shifts.nearest) / shifts.step + 1e-9));
@@ -26,13 +27,18 @@ AlongTrackPreference along_track_preference(const LikelihoodField& field, const 
     for (const double sign : {-1.0, 1.0}) {
       const double d = sign * (shifts.nearest + k * shifts.step);
       const double v = score({base.x + d * c, base.y + d * s, base.theta});
-      if (v > best_score) {
-        best_score = v;
-        best.shift = d;
+      if (v > best_shifted) {
+        best_shifted = v;
+        best_shift = d;
       }
     }
   }
-  best.gain = (best_score - at_base) / static_cast<double>(used);
+  AlongTrackPreference best;
+  best.margin = (at_base - best_shifted) / static_cast<double>(used);
+  if (best.margin < 0.0) {
+    best.shift = best_shift;
+    best.gain = -best.margin;
+  }
   return best;
 }
 

@@ -10,7 +10,9 @@
 // better by even 2 nats in 0.2-0.5 % of the scans, never 10 in a row. This
 // scores the scan on the likelihood field (the LFM's, Eqs. (10)-(13)) at the
 // estimate and at poses shifted along its heading, so the status can say
-// UNCERTAIN while the scans keep preferring a pose elsewhere on that line.
+// UNCERTAIN while the scans keep preferring a pose elsewhere on that line,
+// and, once the position along the line was in doubt, until a scan fits every
+// shifted pose clearly worse than the estimate (the margin: it pins it).
 #pragma once
 
 #include "common/geometry/se2.hpp"
@@ -30,6 +32,10 @@ struct AlongTrackPreference {
   // [m] along the heading (negative: behind) of the best-scoring pose; 0 if none beats the estimate.
   double shift = 0.0;
   double gain = 0.0;  // its log-likelihood minus the estimate's, per end point used (>= 0)
+  // The estimate's log-likelihood minus that of the best shifted pose, per end
+  // point used: > 0 when every shift fits worse, so the scan pins the position
+  // along the heading; about 0 in a corridor; -gain when a shift fits better.
+  double margin = 0.0;
 };
 
 // The pose shifted along `base`'s heading (by `shifts`) that scores the scan

@@ -151,6 +151,7 @@ void read_options(const ConfigReader& reader, StatusOptions* o) {
   reader.read("along_track_gain", &o->along_track_gain, non_negative());
   reader.read("along_track_time", &o->along_track_time, in_range(0.0, 600.0));
   reader.read("along_track_scans", &o->along_track_scans, at_least(1));
+  reader.read("along_track_pin", &o->along_track_pin);
   if (!(o->fit_lost <= o->fit_uncertain && o->fit_uncertain < o->fit_expected)) {
     reader.fail("fit_uncertain", "needs fit_lost <= fit_uncertain < fit_expected");
   }

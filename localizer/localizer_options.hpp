@@ -182,6 +182,12 @@ struct StatusOptions {
   double along_track_gain = 0.05;  // [log-likelihood per beam]
   double along_track_time = 2.0;   // [s]
   int along_track_scans = 10;
+  // After the position along the heading was in doubt (a pose given or found
+  // by search, a jump, a posterior on a handful of particles, the odometry
+  // disagreement or the along-track rule above), UNCERTAIN until a scan fits
+  // every pose 0.4-1.0 m along the heading worse than the estimate by
+  // along_track_gain per beam (along_track.hpp). A corridor never pins it.
+  bool along_track_pin = true;
   bool operator==(const StatusOptions&) const = default;
 };
 

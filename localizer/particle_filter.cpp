@@ -104,6 +104,7 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   along_track_since_.reset();
   along_track_scans_ = 0;
   along_track_slid_ = false;
+  along_track_pinned_ = false;  // a pose given by hand, resumed or searched for: the scans have not placed it
   fresh_ = true;
   low_fit_scans_ = 0;
   lost_ = false;
@@ -312,7 +313,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
     agreement_.add(scan.utime, *last_pose_, result.estimate.pose, *odometry_forward_);
   }
   odometry_forward_.reset();
-  update_along_track(beams.points, result.estimate.pose, scan.utime);
+  update_along_track(beams.points, result, scan.utime);
   judge(&result.estimate);
   result.noise_gain = noise_gain_;
   // Learn the odometry's heading error only from scans the filter is sure of.

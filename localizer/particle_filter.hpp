@@ -27,7 +27,10 @@
 // recovery.probation_time while the challengers look for another place that
 // fits about as well, and as long as they hold one. It says UNCERTAIN while
 // the estimate has lately moved along its heading far from what the odometry
-// measured (a slide the fit cannot show; odometry_agreement.hpp).
+// measured (a slide the fit cannot show; odometry_agreement.hpp), while the
+// scans keep preferring a pose along the heading, and after any of those or a
+// given, searched or jumped-to pose until a scan pins the position along the
+// heading (along_track.hpp).
 #pragma once
 
 #include <memory>
@@ -169,7 +172,7 @@ class ParticleFilter {
   // Sets e's status and its reason.
   void judge(PoseEstimate* e) const;
   // The along-track evidence of this scan at the estimate (along_track.hpp).
-  void update_along_track(const ScanPoints& points, const Pose2& estimate, int64_t utime);
+  void update_along_track(const ScanPoints& points, const UpdateResult& result, int64_t utime);
 
   LocalizerOptions options_;
   Pose2 mount_;
@@ -206,6 +209,9 @@ class ParticleFilter {
   std::optional<int64_t> along_track_since_;
   int along_track_scans_ = 0;      // scans since along_track_since_, this one included
   bool along_track_slid_ = false;  // for status.along_track_time and _scans or longer
+  // A scan has pinned the position along the heading since it was last in
+  // doubt (update_along_track()); not: UNCERTAIN.
+  bool along_track_pinned_ = false;
   std::optional<int64_t> last_fit_utime_;
   // require_confirmation(): scans since, and fitting scans in a row (-1: not required).
   int confirm_scans_seen_ = -1;

@@ -98,14 +98,20 @@ ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bo
       std::abs(agreement_.along_track()) > options_.status.odometry_disagreement) {
     return {kUncertain, "the estimate has lately moved far from what the odometry measured"};
   }
+  if (with_slide_rules && options_.status.along_track_pin && options_.status.along_track_gain > 0.0 &&
+      !along_track_pinned_) {
+    return {kUncertain, "no scan has pinned the position along the heading since it was last in doubt"};
+  }
   return {kOk, ""};
 }
 
-void ParticleFilter::update_along_track(const ScanPoints& points, const Pose2& estimate, int64_t utime) {
+void ParticleFilter::update_along_track(const ScanPoints& points, const UpdateResult& result, int64_t utime) {
   const StatusOptions& o = options_.status;
   // Only while tracking: searching, the status says UNCERTAIN anyway.
-  const bool preferred = o.along_track_gain > 0.0 && !global_ && !searching_ && !points.x.empty() &&
-                         along_track_preference(field_, points, mount_, estimate, {}).gain > o.along_track_gain;
+  const bool on = o.along_track_gain > 0.0 && !global_ && !searching_ && !points.x.empty();
+  const AlongTrackPreference preference =
+      on ? along_track_preference(field_, points, mount_, result.estimate.pose, {}) : AlongTrackPreference{};
+  const bool preferred = on && preference.gain > o.along_track_gain;
   if (!preferred || (along_track_since_ && utime < *along_track_since_)) {
     along_track_since_.reset();
     along_track_scans_ = 0;
@@ -116,6 +122,20 @@ void ParticleFilter::update_along_track(const ScanPoints& points, const Pose2& e
   along_track_scans_ += preferred ? 1 : 0;
   along_track_slid_ = along_track_since_ && along_track_scans_ >= o.along_track_scans &&
                       static_cast<double>(utime - *along_track_since_) * 1e-6 >= o.along_track_time;
+  // Whatever put the estimate where it is without the scans saying where
+  // along the heading (a search or a jump, a posterior that rested on a
+  // handful of particles, the estimate leaving the odometry, the scans
+  // preferring a shifted pose) leaves that position to be pinned again: by a
+  // scan that fits every shifted pose worse than the estimate by
+  // along_track_gain a beam, which a corridor's scans cannot.
+  const bool disagrees = o.odometry_disagreement > 0.0 && std::abs(agreement_.along_track()) > o.odometry_disagreement;
+  const bool collapsed = result.estimate.ess < o.uncertain_ess_fraction * static_cast<double>(particles_.size());
+  if (global_ || searching_ || collapsed || result.matched > 0 || result.adopted || disagrees || along_track_slid_) {
+    along_track_pinned_ = false;
+  }
+  if (on && preference.margin > o.along_track_gain) {
+    along_track_pinned_ = true;
+  }
 }
 
 void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime) {

@@ -14,6 +14,8 @@
 namespace slamer {
 namespace {
 
+constexpr const char* kNotPinned = "no scan has pinned the position along the heading since it was last in doubt";
+
 // 30 m x 3 m, posts 10 cm wide and 30 cm deep on the lower wall every 2 m
 // and on the upper every 3.5 m (together: every 14 m the same).
 SemanticMap posted_corridor() {
@@ -39,20 +41,24 @@ TEST_F(AlongTrackTest, PrefersThePoseTheScanWasTakenAtAlongTheHeading) {
     const AlongTrackPreference p = along_track_preference(field, points, robot.lidar.mount, ahead, {});
     EXPECT_NEAR(p.shift, -off, 1e-9) << off;
     EXPECT_GT(p.gain, StatusOptions{}.along_track_gain) << off;
+    EXPECT_DOUBLE_EQ(p.margin, -p.gain) << off;
   }
-  // At the truth nothing along the heading scores better; with no points there is nothing to prefer.
+  // At the truth nothing along the heading scores better, every shift clearly worse; with no points
+  // there is nothing to prefer.
   const AlongTrackPreference at_truth = along_track_preference(field, points, robot.lidar.mount, truth, {});
   EXPECT_EQ(at_truth.shift, 0.0);
   EXPECT_EQ(at_truth.gain, 0.0);
+  EXPECT_GT(at_truth.margin, StatusOptions{}.along_track_gain) << "the posts pin the truth";
   const AlongTrackPreference none = along_track_preference(field, {}, robot.lidar.mount, truth, {});
   EXPECT_EQ(none.shift, 0.0);
   EXPECT_EQ(none.gain, 0.0);
 }
 
 // A cloud held 0.6 m ahead (tight, the local match off, the robot standing):
-// the walls fit, so the fit rules say OK; after along_track_time of scans
-// that prefer the pose behind it (and 10 of them), the status says UNCERTAIN and why. The
-// poses are the same with the rule off.
+// the walls fit, so the fit rules say OK; no scan pins a pose given by hand
+// that is off, so the status says UNCERTAIN from the first scans, and after
+// along_track_time of scans that prefer the pose behind it (and 10 of them)
+// it says that. The poses are the same with the rules off.
 TEST_F(AlongTrackTest, AnEstimateTheScansKeepPlacingElsewhereAlongTheHeadingIsUncertain) {
   LocalizerOptions options;
   options.mode = LocalizerMode::kLfm;
@@ -81,7 +87,7 @@ TEST_F(AlongTrackTest, AnEstimateTheScansKeepPlacingElsewhereAlongTheHeadingIsUn
       EXPECT_EQ(with.status, LocalizerStatus::kUncertain) << k;
       EXPECT_STREQ(with.status_reason, "the scans have fitted a pose along the heading better for a while") << k;
     } else if (k >= 5) {
-      EXPECT_EQ(with.status, LocalizerStatus::kOk) << k << ": " << with.status_reason;
+      EXPECT_STREQ(with.status_reason, kNotPinned) << k;
     }
   }
 }
@@ -100,6 +106,52 @@ TEST_F(AlongTrackTest, ASlowLogNeedsAlongTrackScansOfEvidenceNotOnlyTheTime) {
     if (k >= 9) {
       EXPECT_STREQ(e.status_reason, "the scans have fitted a pose along the heading better for a while") << k;
     } else if (k >= 5) {
+      EXPECT_STREQ(e.status_reason, kNotPinned) << k;
+    }
+  }
+}
+
+// A pose given by hand where the scans cannot say where along the corridor
+// the robot is (plain walls, both ends out of range) is UNCERTAIN however well
+// the walls fit; given where posts are in view, the first scans pin it: OK.
+TEST(AlongTrackPinning, APoseGivenInAPlainCorridorIsUncertainOneAmongPostsIsOk) {
+  // 80 m x 3 m, open at both ends; posts every 2 m in the last 20 m only.
+  const SemanticMap map =
+      grid_map(1600, 60, [](int x, int y) { return y == 0 || y == 59 || (x >= 1200 && y < 7 && x % 40 < 2); });
+  const TrueWorld world{map, WorldOptions{}, "corridor posted at one end"};
+  const RobotOptions robot =
+      load_options<RobotOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart_mini.yaml");
+  LocalizerOptions options;
+  options.mode = LocalizerMode::kLfm;
+  options.particles = 300;
+  ParticleFilter filter(map, options, robot.lidar.mount);
+  for (const Pose2 truth : {Pose2{20.1, 1.5, 0.0}, Pose2{70.1, 1.5, 0.0}}) {
+    filter.initialize(truth, {0.01, 0.01, 0.002});
+    LaserScan scan = simulated_scan(world, robot, truth);
+    for (int k = 0; k < 20; ++k) {
+      scan.utime = (truth.x > 50.0 ? 10'000'000 : 1'000'000) + k * 100'000;
+      const UpdateResult r = filter.update(scan, nullptr);
+      EXPECT_LT(std::abs(r.estimate.pose.x - truth.x), 0.1) << truth.x << " " << k;
+      if (k < 5) {
+        continue;  // the first scans' spread settles
+      }
+      EXPECT_GT(r.fit, 0.75) << "the walls fit, " << truth.x << " " << k;
+      if (truth.x < 50.0) {
+        EXPECT_STREQ(r.estimate.status_reason, kNotPinned) << k;
+      } else {
+        EXPECT_EQ(r.estimate.status, LocalizerStatus::kOk) << k << ": " << r.estimate.status_reason;
+      }
+    }
+  }
+  // The rule off (status.along_track_pin): the plain corridor's pose says OK.
+  options.status.along_track_pin = false;
+  ParticleFilter unpinned(map, options, robot.lidar.mount);
+  unpinned.initialize({20.1, 1.5, 0.0}, {0.01, 0.01, 0.002});
+  LaserScan scan = simulated_scan(world, robot, {20.1, 1.5, 0.0});
+  for (int k = 0; k < 20; ++k) {
+    scan.utime = 1'000'000 + k * 100'000;
+    const PoseEstimate e = unpinned.update(scan, nullptr).estimate;
+    if (k >= 5) {
       EXPECT_EQ(e.status, LocalizerStatus::kOk) << k << ": " << e.status_reason;
     }
   }

@@ -116,6 +116,7 @@ TEST(StatusOptions, FitThresholdsOutOfOrderAreRefusedWithTheirKey) {
   EXPECT_NE(error_of("status: {along_track_gain: -0.1}\n").find("'status.along_track_gain'"), std::string::npos);
   EXPECT_NE(error_of("status: {along_track_time: 601}\n").find("'status.along_track_time'"), std::string::npos);
   EXPECT_NE(error_of("status: {along_track_scans: 0}\n").find("'status.along_track_scans'"), std::string::npos);
+  EXPECT_NE(error_of("status: {along_track_pin: maybe}\n").find("'status.along_track_pin'"), std::string::npos);
 }
 
 TEST(ScanFit, FractionOfBeamsOnTheMapsObstacles) {
