@@ -114,29 +114,27 @@ TEST_F(AlongTrackTest, ASlowLogNeedsAlongTrackScansOfEvidenceNotOnlyTheTime) {
 // A pose given by hand where the scans cannot say where along the corridor
 // the robot is (plain walls, both ends out of range) is UNCERTAIN however well
 // the walls fit; given where posts are in view, the first scans pin it: OK.
-TEST(AlongTrackPinning, APoseGivenInAPlainCorridorIsUncertainOneAmongPostsIsOk) {
+TEST_F(AlongTrackTest, APoseGivenInAPlainCorridorIsUncertainOneAmongPostsIsOk) {
   // 80 m x 3 m, open at both ends; posts every 2 m in the last 20 m only.
-  const SemanticMap map =
+  const SemanticMap plain =
       grid_map(1600, 60, [](int x, int y) { return y == 0 || y == 59 || (x >= 1200 && y < 7 && x % 40 < 2); });
-  const TrueWorld world{map, WorldOptions{}, "corridor posted at one end"};
-  const RobotOptions robot =
-      load_options<RobotOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart_mini.yaml");
+  const TrueWorld plain_world{plain, WorldOptions{}, "corridor posted at one end"};
   LocalizerOptions options;
   options.mode = LocalizerMode::kLfm;
   options.particles = 300;
-  ParticleFilter filter(map, options, robot.lidar.mount);
-  for (const Pose2 truth : {Pose2{20.1, 1.5, 0.0}, Pose2{70.1, 1.5, 0.0}}) {
-    filter.initialize(truth, {0.01, 0.01, 0.002});
-    LaserScan scan = simulated_scan(world, robot, truth);
+  ParticleFilter filter(plain, options, robot.lidar.mount);
+  for (const Pose2 given : {Pose2{20.1, 1.5, 0.0}, Pose2{70.1, 1.5, 0.0}}) {
+    filter.initialize(given, {0.01, 0.01, 0.002});
+    LaserScan given_scan = simulated_scan(plain_world, robot, given);
     for (int k = 0; k < 20; ++k) {
-      scan.utime = (truth.x > 50.0 ? 10'000'000 : 1'000'000) + k * 100'000;
-      const UpdateResult r = filter.update(scan, nullptr);
-      EXPECT_LT(std::abs(r.estimate.pose.x - truth.x), 0.1) << truth.x << " " << k;
+      given_scan.utime = (given.x > 50.0 ? 10'000'000 : 1'000'000) + k * 100'000;
+      const UpdateResult r = filter.update(given_scan, nullptr);
+      EXPECT_LT(std::abs(r.estimate.pose.x - given.x), 0.1) << given.x << " " << k;
       if (k < 5) {
         continue;  // the first scans' spread settles
       }
-      EXPECT_GT(r.fit, 0.75) << "the walls fit, " << truth.x << " " << k;
-      if (truth.x < 50.0) {
+      EXPECT_GT(r.fit, 0.75) << "the walls fit, " << given.x << " " << k;
+      if (given.x < 50.0) {
         EXPECT_STREQ(r.estimate.status_reason, kNotPinned) << k;
       } else {
         EXPECT_EQ(r.estimate.status, LocalizerStatus::kOk) << k << ": " << r.estimate.status_reason;
@@ -145,12 +143,12 @@ TEST(AlongTrackPinning, APoseGivenInAPlainCorridorIsUncertainOneAmongPostsIsOk) 
   }
   // The rule off (status.along_track_pin): the plain corridor's pose says OK.
   options.status.along_track_pin = false;
-  ParticleFilter unpinned(map, options, robot.lidar.mount);
+  ParticleFilter unpinned(plain, options, robot.lidar.mount);
   unpinned.initialize({20.1, 1.5, 0.0}, {0.01, 0.01, 0.002});
-  LaserScan scan = simulated_scan(world, robot, {20.1, 1.5, 0.0});
+  LaserScan plain_scan = simulated_scan(plain_world, robot, {20.1, 1.5, 0.0});
   for (int k = 0; k < 20; ++k) {
-    scan.utime = 1'000'000 + k * 100'000;
-    const PoseEstimate e = unpinned.update(scan, nullptr).estimate;
+    plain_scan.utime = 1'000'000 + k * 100'000;
+    const PoseEstimate e = unpinned.update(plain_scan, nullptr).estimate;
     if (k >= 5) {
       EXPECT_EQ(e.status, LocalizerStatus::kOk) << k << ": " << e.status_reason;
     }
