@@ -171,6 +171,10 @@ class ParticleFilter {
   StatusJudgement status(const PoseEstimate& e, bool with_slide_rules = true) const;
   // Sets e's status and its reason.
   void judge(PoseEstimate* e) const;
+  // ESS under status.uncertain_ess_fraction of the particles: the posterior rests on a handful.
+  bool few_particles_carry(const PoseEstimate& e) const;
+  // The estimate's travel along its heading off the odometry's by more than status.odometry_disagreement.
+  bool odometry_disagrees() const;
   // The along-track evidence of this scan at the estimate (along_track.hpp).
   void update_along_track(const ScanPoints& points, const UpdateResult& result, int64_t utime);
 

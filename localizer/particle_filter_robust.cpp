@@ -88,14 +88,13 @@ ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bo
   if (std::sqrt(std::max(e.covariance[0], e.covariance[4])) > options_.status.uncertain_position_sigma) {
     return {kUncertain, "the particles are spread"};
   }
-  if (e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size())) {
+  if (few_particles_carry(e)) {
     return {kUncertain, "a few particles carry the estimate"};
   }
   if (with_slide_rules && along_track_slid_) {
     return {kUncertain, "the scans have fitted a pose along the heading better for a while"};
   }
-  if (with_slide_rules && options_.status.odometry_disagreement > 0.0 &&
-      std::abs(agreement_.along_track()) > options_.status.odometry_disagreement) {
+  if (with_slide_rules && odometry_disagrees()) {
     return {kUncertain, "the estimate has lately moved far from what the odometry measured"};
   }
   if (with_slide_rules && options_.status.along_track_pin && options_.status.along_track_gain > 0.0 &&
@@ -103,6 +102,15 @@ ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bo
     return {kUncertain, "no scan has pinned the position along the heading since it was last in doubt"};
   }
   return {kOk, ""};
+}
+
+bool ParticleFilter::few_particles_carry(const PoseEstimate& e) const {
+  return e.ess < options_.status.uncertain_ess_fraction * static_cast<double>(particles_.size());
+}
+
+bool ParticleFilter::odometry_disagrees() const {
+  const double bar = options_.status.odometry_disagreement;
+  return bar > 0.0 && std::abs(agreement_.along_track()) > bar;
 }
 
 void ParticleFilter::update_along_track(const ScanPoints& points, const UpdateResult& result, int64_t utime) {
@@ -128,9 +136,8 @@ void ParticleFilter::update_along_track(const ScanPoints& points, const UpdateRe
   // preferring a shifted pose) leaves that position to be pinned again: by a
   // scan that fits every shifted pose worse than the estimate by
   // along_track_gain a beam, which a corridor's scans cannot.
-  const bool disagrees = o.odometry_disagreement > 0.0 && std::abs(agreement_.along_track()) > o.odometry_disagreement;
-  const bool collapsed = result.estimate.ess < o.uncertain_ess_fraction * static_cast<double>(particles_.size());
-  if (global_ || searching_ || collapsed || result.matched > 0 || result.adopted || disagrees || along_track_slid_) {
+  if (global_ || searching_ || few_particles_carry(result.estimate) || result.matched > 0 || result.adopted ||
+      odometry_disagrees() || along_track_slid_) {
     along_track_pinned_ = false;
   }
   if (on && preference.margin > o.along_track_gain) {
