@@ -79,7 +79,7 @@ TEST(OccupancyMap, BoxRoomLoadsAsASemanticMap) {
 namespace slamer {
 namespace {
 
-TEST(WeanMap, ProbabilitiesOfFreeBecomeCells) {
+TEST(WeanMap, ProbabilitiesOfFreeBecomeCellsColumnByColumn) {
   const std::string excerpt = std::string(SLAMER_SOURCE_DIR) + "/test/datasets/excerpts/wean_map.dat";
   const GridCells map = read_wean_map(excerpt);
   ASSERT_EQ(map.geometry.width, 4);
@@ -92,7 +92,9 @@ TEST(WeanMap, ProbabilitiesOfFreeBecomeCells) {
   EXPECT_EQ(at(3, 0), Occupancy::kFree);
   EXPECT_EQ(at(1, 1), Occupancy::kOccupied);  // 0.3
   EXPECT_EQ(at(2, 1), Occupancy::kFree);      // 0.81
-  EXPECT_EQ(at(3, 2), Occupancy::kOccupied);  // file row 2 is grid row 2
+  EXPECT_EQ(at(0, 1), Occupancy::kFree);      // file line i is the column x = i, its k-th number y = k
+  EXPECT_EQ(at(3, 1), Occupancy::kUnknown);
+  EXPECT_EQ(at(3, 2), Occupancy::kOccupied);
   const std::string dir = (std::filesystem::temp_directory_path() / "slamer_wean_map_test").string();
   write_grid_map(map.geometry, map.cells, "test", dir);
   const SemanticMap loaded = load_semantic_map(dir + "/map.yaml");

@@ -32,7 +32,7 @@ GridCells read_wean_map(const std::string& path) {
       }
       map.geometry.resolution = centimetres * 0.01;
     } else if (key == "global_map[0]:") {
-      if (!tokens.number(&map.geometry.width) || !tokens.number(&map.geometry.height) || map.geometry.width <= 0 ||
+      if (!tokens.number(&map.geometry.height) || !tokens.number(&map.geometry.width) || map.geometry.width <= 0 ||
           map.geometry.height <= 0 || map.geometry.width > 20000 || map.geometry.height > 20000) {
         throw fail("bad map size");
       }
@@ -40,15 +40,15 @@ GridCells read_wean_map(const std::string& path) {
     }
   }
   map.cells.assign(map.geometry.size(), Occupancy::kUnknown);
-  for (int y = 0; y < map.geometry.height; ++y) {
+  for (int x = 0; x < map.geometry.width; ++x) {
     if (!reader.next(&line)) {
-      throw fail("the file ends after " + std::to_string(y) + " of " + std::to_string(map.geometry.height) + " rows");
+      throw fail("the file ends after " + std::to_string(x) + " of " + std::to_string(map.geometry.width) + " lines");
     }
     dataset_detail::Tokens tokens(line);
-    for (int x = 0; x < map.geometry.width; ++x) {
+    for (int y = 0; y < map.geometry.height; ++y) {
       double free = 0.0;
       if (!tokens.number(&free) || !std::isfinite(free) || free > 1.0 || (free < 0.0 && free != -1.0)) {
-        throw fail("cell " + std::to_string(x) + " is not a probability or -1");
+        throw fail("cell " + std::to_string(y) + " is not a probability or -1");
       }
       Occupancy& cell = map.cells[map.geometry.index(x, y)];
       if (free >= 0.0 && free <= 0.35) {
