@@ -40,6 +40,7 @@ std::unique_ptr<ChildProcess> start_urg_sim(std::vector<std::string> args, int* 
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   *port = std::stoi(read_file(port_file));
+  std::filesystem::remove(port_file);
   return sim;
 }
 

@@ -22,6 +22,7 @@
 #include "slamer/process_status_t.hpp"
 #include "test/support/child_process.hpp"
 #include "test/support/driver_processes.hpp"
+#include "test/support/temp_dir.hpp"
 #include "tools/urg_sim/sim_sensor.hpp"
 
 namespace slamer {
@@ -131,7 +132,8 @@ TEST(UrgProcess, DamagedRepliesAreCountedNotPublished) {
   const std::string url = test::unique_lcm_url(2);
   Bus bus(url);
   int port = 0;
-  const std::string truth = temp_path("urg_truth");
+  const test::TempDir dir("urg_truth");  // removed with the file after the simulator stops
+  const std::string truth = dir.file("truth.txt");
   auto sim = start_sim({"--model", "UTM-30LX", "--bad-checksum-rate", "0.05", "--truncate-rate", "0.05",
                         "--garbage-rate", "0.02", "--segment-max", "13", "--truth", truth},
                        &port);
