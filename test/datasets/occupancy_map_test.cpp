@@ -160,9 +160,10 @@ TEST(WeanMap, RealScansFitTheMapAtTheirPlacesAndNotTheMirroredMap) {
     }
     return static_cast<double>(on_walls) / std::max(returns, 1);
   };
-  const std::vector<std::pair<std::size_t, Pose2>> places = {
-      {200, {42.56, 40.06, -1.745}}, {400, {46.66, 39.90, -3.052}}, {600, {38.15, 40.11, 2.914}},
-      {1000, {31.08, 40.94, -0.052}}};
+  const std::vector<std::pair<std::size_t, Pose2>> places = {{200, {42.56, 40.06, -1.745}},
+                                                             {400, {46.66, 39.90, -3.052}},
+                                                             {600, {38.15, 40.11, 2.914}},
+                                                             {1000, {31.08, 40.94, -0.052}}};
   double right = 0.0;
   double mirrored = 0.0;
   for (const auto& [k, place] : places) {
