@@ -140,6 +140,36 @@ TEST(Settling, RunsAgreeFromTheScanAfterWhichAllStayWithinTheDistance) {
   EXPECT_THROW(agreement({runs[0]}, 0.5), std::invalid_argument);
 }
 
+TEST(Settling, GroupsSayWhichRunsAgreeWhereNotAllDo) {
+  // Four runs at 10 Hz: the second joins the first at scan 20 (0.3 m ahead), the
+  // third is 10 m away throughout, the fourth 0.45 m beside the first and so 0.54 m
+  // from the second: the first agrees with both, the three never all within 0.5 m.
+  std::vector<std::vector<PoseReport>> runs(4);
+  for (int k = 0; k < 50; ++k) {
+    const int64_t utime = 1'000'000 + 100'000 * k;
+    const double x = 0.1 * k;
+    runs[0].push_back({utime, {x, 0.0, 0.0}, BenchStatus::kOk});
+    runs[1].push_back({utime, {x + (k < 20 ? 10.0 : 0.3), 0.0, 0.0}, BenchStatus::kOk});
+    runs[2].push_back({utime, {x, 10.0, 0.0}, BenchStatus::kOk});
+    runs[3].push_back({utime, {x, -0.45, 0.0}, BenchStatus::kOk});
+  }
+  const std::vector<AgreeingGroup> three = agreeing_groups({runs[0], runs[1], runs[2]}, 0.5);
+  ASSERT_EQ(three.size(), 2u);
+  EXPECT_EQ(three[0].runs, (std::vector<std::size_t>{0, 1}));
+  ASSERT_TRUE(three[0].agreement.scan.has_value());
+  EXPECT_EQ(*three[0].agreement.scan, 20);
+  EXPECT_NEAR(three[0].agreement.seconds, 2.0, 1e-9);
+  EXPECT_EQ(three[1].runs, (std::vector<std::size_t>{2}));
+  EXPECT_FALSE(three[1].agreement.scan.has_value());
+
+  const std::vector<AgreeingGroup> four = agreeing_groups(runs, 0.5);
+  ASSERT_EQ(four.size(), 2u);
+  EXPECT_EQ(four[0].runs, (std::vector<std::size_t>{0, 1, 3}));
+  EXPECT_FALSE(four[0].agreement.scan.has_value());
+  EXPECT_NEAR(four[0].agreement.spread_at_end, std::hypot(0.3, 0.45), 1e-9);
+  EXPECT_EQ(four[1].runs, (std::vector<std::size_t>{2}));
+}
+
 TEST(BenchFiles, LocalizerConfigKeepsEverythingElse) {
   const std::string config = std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml";
   const std::string yaml = bench_localizer_config(config, {123, 3, "/m/map.yaml", "/r/robot.yaml"});

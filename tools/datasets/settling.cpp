@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 
 namespace slamer {
@@ -86,6 +87,45 @@ Agreement agreement(const std::vector<std::vector<PoseReport>>& runs, double wit
     a.spread_after = *std::max_element(spread.begin() + static_cast<std::ptrdiff_t>(k), spread.end());
   }
   return a;
+}
+
+std::vector<AgreeingGroup> agreeing_groups(const std::vector<std::vector<PoseReport>>& runs, double within) {
+  // Union-find over the pairwise agreements.
+  std::vector<std::size_t> root(runs.size());
+  std::iota(root.begin(), root.end(), std::size_t{0});
+  const auto find = [&](std::size_t r) {
+    while (root[r] != r) {
+      r = root[r];
+    }
+    return r;
+  };
+  for (std::size_t a = 0; a < runs.size(); ++a) {
+    for (std::size_t b = a + 1; b < runs.size(); ++b) {
+      if (agreement({runs[a], runs[b]}, within).scan) {
+        root[find(b)] = find(a);
+      }
+    }
+  }
+  std::vector<AgreeingGroup> groups;
+  std::vector<std::optional<std::size_t>> group_of_root(runs.size());
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    auto& g = group_of_root[find(r)];
+    if (!g) {
+      g = groups.size();
+      groups.emplace_back();
+    }
+    groups[*g].runs.push_back(r);
+  }
+  for (AgreeingGroup& g : groups) {
+    if (g.runs.size() >= 2) {
+      std::vector<std::vector<PoseReport>> together;
+      for (const std::size_t r : g.runs) {
+        together.push_back(runs[r]);
+      }
+      g.agreement = agreement(together, within);
+    }
+  }
+  return groups;
 }
 
 }  // namespace slamer

@@ -38,4 +38,15 @@ struct Agreement {
 // Needs two runs or more (std::invalid_argument otherwise).
 Agreement agreement(const std::vector<std::vector<PoseReport>>& runs, double within = 0.5);
 
+// Where not every run agrees: which do. Two runs are linked when they agree
+// within `within` to the end; a group is linked runs (transitively), each
+// with the agreement of its runs together (which may be never, if a chain of
+// links spans more than `within`). Groups in the order of their first run,
+// runs by index into `runs`; a run that agrees with none is a group alone.
+struct AgreeingGroup {
+  std::vector<std::size_t> runs;
+  Agreement agreement;  // of these runs together; default for a run alone
+};
+std::vector<AgreeingGroup> agreeing_groups(const std::vector<std::vector<PoseReport>>& runs, double within = 0.5);
+
 }  // namespace slamer

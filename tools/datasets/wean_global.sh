@@ -3,7 +3,7 @@
 # start): converts wean.dat, imports robotdata1-5, runs slamer-localizer
 # --global (lfm, every beam) and prints after how many scans and seconds each
 # run settles and, with several seeds, from which scan the seeds' runs agree
-# within 0.5 m (slamer-settle). Run from the repo root after building.
+# within 0.5 m, or which of them do (slamer-settle). Run from the repo root after building.
 #   tools/datasets/wean_global.sh [OUT_DIR]
 #   environment: PARTICLES (5000), SEEDS ("1"), DATASETS (folder of the logs)
 set -euo pipefail
@@ -36,6 +36,6 @@ for k in 1 2 3 4 5; do
   runs=()
   for seed in $seeds; do runs+=("$out/log$k-p$particles-s$seed.lcm"); done
   if [ "${#runs[@]}" -ge 2 ]; then
-    build/bin/slamer-settle --agree 0.5 "${runs[@]}" | tail -n 1
+    build/bin/slamer-settle --agree 0.5 "${runs[@]}" | sed -n '/^the /,$p'
   fi
 done
