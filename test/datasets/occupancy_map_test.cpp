@@ -113,6 +113,17 @@ TEST(WeanMap, ProbabilitiesOfFreeBecomeCellsColumnByColumn) {
   }
   std::ofstream(bad) << "global_map[0]: 4 3\n-1 0 0.5 1\n";
   EXPECT_THROW(read_wean_map(bad), std::runtime_error);
+  // The sizes in cm say which number is which: 3 x 4 cells at 10 cm is 30 cm along y, 40 along x.
+  std::ofstream(bad) << "robot_specifications->global_mapsize_x 30\nrobot_specifications->global_mapsize_y 40\n"
+                     << "robot_specifications->resolution 10\nglobal_map[0]: 3 4\n";
+  try {
+    read_wean_map(bad);
+    ADD_FAILURE() << "sizes that disagree were accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("slamer_wean_bad.dat:4: global_map[0] says 3 (y) x 4 (x) cells"),
+              std::string::npos)
+        << e.what();
+  }
   std::filesystem::remove(bad);
 }
 

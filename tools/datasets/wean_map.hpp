@@ -6,6 +6,8 @@
 // is the order of the course's reader (bee-map.c: x outer, y inner) and the
 // map so read is the handout's picture, wean.gif; read row by row instead it
 // is that picture mirrored, which the scans fit only along symmetric corridors.
+// The header's global_mapsize_x and _y (cm), where given, must agree with
+// SIZE_X and SIZE_Y: they say which number is which.
 // Occupied: P(free) <= 0.35 (P(occupied) >= 0.65, map_server's occupied
 // threshold); free: P(free) >= 0.804 (P(occupied) <= 0.196); else unknown.
 #pragma once
