@@ -10,6 +10,7 @@
 
 #include "common/map/distance_field.hpp"
 #include "common/map/semantic_map.hpp"
+#include "localizer/scan_fit.hpp"
 #include "tools/datasets/dataset_scans.hpp"
 #include "tools/datasets/occupancy_map.hpp"
 #include "tools/datasets/wean_map.hpp"
@@ -154,22 +155,18 @@ TEST(WeanMap, RealScansFitTheMapAtTheirPlacesAndNotTheMirroredMap) {
   }
   const DistanceField field(g, walls, 1.0);
   const DistanceField mirrored_field(g, mirrored_walls, 1.0);
-  // The fraction of returns ending within 0.1 m of a wall, the laser 0.25 m ahead of the base.
+  // The localizer's scan fit: the fraction of returns ending within 0.1 m of a wall, the laser 0.25 m
+  // ahead of the base.
   const auto fit = [&](const DistanceField& f, const LaserScan& scan, const Pose2& base) {
-    const Pose2 laser = compose(base, Pose2{0.25, 0.0, 0.0});
-    int returns = 0;
-    int on_walls = 0;
+    ScanPoints points;
     for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-      if (!(scan.ranges[i] < scan.range_max)) {
-        continue;
+      if (scan.ranges[i] < scan.range_max) {
+        const double r = scan.ranges[i] / g.resolution;
+        points.x.push_back(static_cast<float>(r * std::cos(scan.angle(i))));
+        points.y.push_back(static_cast<float>(r * std::sin(scan.angle(i))));
       }
-      const double a = laser.theta + scan.angle(i);
-      const Eigen::Vector2d end(laser.x + scan.ranges[i] * std::cos(a), laser.y + scan.ranges[i] * std::sin(a));
-      ++returns;
-      const std::optional<float> d = f.at_world(end);
-      on_walls += d && *d <= 0.1f;
     }
-    return static_cast<double>(on_walls) / std::max(returns, 1);
+    return scan_fit(f, points, sensor_in_cells(g, base, Pose2{0.25, 0.0, 0.0}), 0.1);
   };
   const std::vector<std::pair<std::size_t, Pose2>> places = {{200, {42.56, 40.06, -1.745}},
                                                              {400, {46.66, 39.90, -3.052}},
