@@ -177,6 +177,8 @@ void read_options(const ConfigReader& reader, RecoveryOptions* o) {
   reader.read("adopt_time", &o->adopt_time, in_range(0.0, 60.0));
   reader.read("adopt_margin", &o->adopt_margin, probability());
   reader.read("probation_time", &o->probation_time, in_range(0.0, 600.0));
+  reader.read("rival_margin", &o->rival_margin, in_range(0.0, 1e6));
+  reader.read("rival_places", &o->rival_places, in_range(1, 64));
   read_options(reader.section("local"), &o->local);
 }
 

@@ -228,6 +228,13 @@ struct RecoveryOptions {
   // the estimate that fits as a correct pose does and within adopt_margin as
   // well). The cloud is never moved on probation: the status only (0: none).
   double probation_time = 20.0;  // [s]
+  // After a global localization, rival places keep particles of their own
+  // (rival_places.hpp) until one leads the others by rival_margin nats of the
+  // particle weights; the status is UNCERTAIN while more than one is left.
+  // Not fitted (README, "Rival places"; Wean: 9 of 30 global localizations
+  // home before, 19 with it).
+  double rival_margin = 50.0;  // [nats] (0: ordinary resampling, no rivals kept)
+  int rival_places = 8;        // the most kept
   LocalMatchOptions local;
   bool operator==(const RecoveryOptions&) const = default;
 };

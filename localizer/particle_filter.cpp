@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -13,6 +14,10 @@ namespace slamer {
 
 namespace {
 
+// Keeping places, the particles move and a scan weighs them once the odometry
+// has moved this far or turned this much (held_motion_; AMCL's update_min_d).
+constexpr double kPlaceMove = 0.2;   // [m]
+constexpr double kPlaceTurn = 0.2;   // [rad]
 constexpr double kClearance = 0.15;  // [m] global proposals keep the robot's centre this far from obstacles
 // The LFM field keeps its levels row-major up to this many cells (a byte
 // each: 200 m x 200 m at 5 cm), for the beams' lookups.
@@ -116,6 +121,10 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   jumped_ = false;
   probation_until_.reset();
   unconfirmed_ = false;
+  keeping_places_ = false;
+  rival_place_ = false;
+  held_motion_.reset();
+  place_scan_due_ = false;
   increment_.reset();
   last_pose_.reset();  // the learned correction stays: it belongs to the robot, not the pose
   agreement_.reset();
@@ -131,16 +140,30 @@ void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
     increment_ = raw;
   }
   odometry_forward_ = odometry_forward_.value_or(0.0) + between(odom_from, odom_to).x;
-  const OdometryIncrement u = correction_.correct(raw);
-  for (Particle& p : particles_) {
-    p.pose = sample_motion(p.pose, u, options_.motion, rng_, noise_gain_);
+  if (keeping_places_ && !global_) {
+    held_motion_ = compose(held_motion_.value_or(Pose2{}), between(odom_from, odom_to));
+    if (std::hypot(held_motion_->x, held_motion_->y) >= kPlaceMove || std::abs(held_motion_->theta) >= kPlaceTurn) {
+      move_particles(decompose(Pose2{}, *held_motion_));
+      held_motion_.reset();
+      place_scan_due_ = true;
+    }
+  } else {
+    move_particles(raw);
   }
+  const OdometryIncrement u = correction_.correct(raw);
   for (Particle& c : challengers_) {
     // They search: a zero increment (the robot standing) still moves them about.
     c.pose = sample_motion(c.pose, u, options_.motion, challenger_rng_, options_.motion.noise_gain_max);
   }
   if (challenger_track_) {
     challenger_track_ = compose(*challenger_track_, between(odom_from, odom_to));
+  }
+}
+
+void ParticleFilter::move_particles(const OdometryIncrement& raw) {
+  const OdometryIncrement u = correction_.correct(raw);
+  for (Particle& p : particles_) {
+    p.pose = sample_motion(p.pose, u, options_.motion, rng_, noise_gain_);
   }
 }
 
@@ -237,20 +260,38 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   }
   const PreparedScan beams = prepare(scan, objects);
   const PreparedObjects prepared_objects = objects != nullptr ? prepare_objects(*objects) : PreparedObjects{};
+  // Keeping places, a scan from where the last one was taken weighs nothing (held_motion_).
+  const bool weigh = !keeping_places_ || global_ || !updated_ || place_scan_due_;
+  place_scan_due_ = false;
   // While LOST with a cloud to keep, the proposals compete beside it
   // (compete(), after this scan's fit); globally localizing, they join it.
-  if (global_ || ((lost_ || searching_) && !(options_.recovery.adopt_time > 0.0))) {
+  if (weigh && (global_ || ((lost_ || searching_) && !(options_.recovery.adopt_time > 0.0)))) {
     inject(beams.points, &result);
   }
-  match_locally(beams.points, turn_during_sweep(scan), &result);
+  // Not while places are kept: its particles replace the least likely ones,
+  // a rival's, with the estimate's weight.
+  if (!keeping_places_) {
+    match_locally(beams.points, turn_during_sweep(scan), &result);
+  }
   std::vector<double> log_likelihood(particles_.size());
   std::vector<double> beam_part(particles_.size());
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     beam_part[i] = beams_log_likelihood(particles_[i].pose, beams);
     log_likelihood[i] = beam_part[i] + objects_weight(particles_[i].pose, prepared_objects);
-    particles_[i].log_weight += log_likelihood[i];
+    if (weigh) {
+      particles_[i].log_weight += log_likelihood[i];
+    }
   }
   normalize(&particles_);
+  if (keeping_places_) {
+    const PlaceOptions places = place_options();
+    rival_place_ = rivals_in(places_of(particles_, places), places).size() > 1;
+    keeping_places_ = global_ || rival_place_;  // decided: ordinary resampling from here on
+    if (!keeping_places_ && held_motion_) {
+      move_particles(decompose(Pose2{}, *held_motion_));
+      held_motion_.reset();
+    }
+  }
   double mean_beam = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     mean_beam += std::exp(particles_[i].log_weight) * beam_part[i];
@@ -324,7 +365,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   increment_.reset();
   last_pose_ = result.estimate.pose;
   result.heading_per_metre = correction_.heading_per_metre();
-  if (result.estimate.ess < options_.resample_threshold * static_cast<double>(particles_.size())) {
+  if (weigh && result.estimate.ess < options_.resample_threshold * static_cast<double>(particles_.size())) {
     resample();
     result.resampled = true;
   }
@@ -332,38 +373,64 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
 }
 
 PoseEstimate ParticleFilter::estimate() const {
+  if (keeping_places_ && !particles_.empty()) {
+    // Between two places 6 m apart the mean is in neither: the most likely place's.
+    return estimate_of(places_of(particles_, place_options()).front().members);
+  }
+  return estimate_of({});
+}
+
+PoseEstimate ParticleFilter::estimate_of(const std::vector<std::size_t>& members) const {
   PoseEstimate e;
   if (particles_.empty()) {
     return e;
   }
+  double all_sum = 0.0;
+  double all_squares = 0.0;
+  for (const Particle& p : particles_) {
+    const double w = std::exp(p.log_weight);
+    all_sum += w;
+    all_squares += w * w;
+  }
+  std::vector<std::size_t> indices = members;
+  if (indices.empty()) {
+    indices.resize(particles_.size());
+    std::iota(indices.begin(), indices.end(), std::size_t{0});
+  }
   std::vector<double> weights;
   std::vector<double> headings;
-  double sum_squares = 0.0;
-  for (const Particle& p : particles_) {
+  for (const std::size_t i : indices) {
+    const Particle& p = particles_[i];
     const double w = std::exp(p.log_weight);
     weights.push_back(w);
     headings.push_back(p.pose.theta);
     e.pose.x += w * p.pose.x;
     e.pose.y += w * p.pose.y;
-    sum_squares += w * w;
   }
   const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
   e.pose.x /= total;
   e.pose.y /= total;
-  e.pose.theta = circular_mean(headings, weights).value_or(particles_.front().pose.theta);
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const double w = weights[i] / total;
-    const double d[3] = {particles_[i].pose.x - e.pose.x, particles_[i].pose.y - e.pose.y,
-                         angle_diff(particles_[i].pose.theta, e.pose.theta)};
+  e.pose.theta = circular_mean(headings, weights).value_or(particles_[indices.front()].pose.theta);
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    const Particle& p = particles_[indices[k]];
+    const double w = weights[k] / total;
+    const double d[3] = {p.pose.x - e.pose.x, p.pose.y - e.pose.y, angle_diff(p.pose.theta, e.pose.theta)};
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) {
         e.covariance[r * 3 + c] += w * d[r] * d[c];
       }
     }
   }
-  e.ess = (total * total) / sum_squares;
+  e.ess = (all_sum * all_sum) / all_squares;
   judge(&e);
   return e;
+}
+
+PlaceOptions ParticleFilter::place_options() const {
+  PlaceOptions o;
+  o.max_places = static_cast<std::size_t>(options_.recovery.rival_places);
+  o.margin = options_.recovery.rival_margin;
+  return o;
 }
 
 void ParticleFilter::normalize(std::vector<Particle>* set) {
@@ -383,6 +450,17 @@ void ParticleFilter::normalize(std::vector<Particle>* set) {
 }
 
 void ParticleFilter::resample() {
+  if (keeping_places_) {
+    PlaceOptions places = place_options();
+    if (global_) {
+      // Searching, no place is dropped: fresh proposals are spread about their
+      // place and weigh tens of nats less than a cloud the scans have refined.
+      places.margin = std::numeric_limits<double>::infinity();
+    }
+    particles_ = resample_keeping_places(particles_, places_of(particles_, places), places, particles_.size(), rng_);
+    normalize(&particles_);
+    return;
+  }
   particles_ = resampled(particles_, particles_.size(), rng_);
 }
 

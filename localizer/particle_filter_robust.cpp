@@ -34,6 +34,7 @@ void ParticleFilter::initialize_global() {
     p.pose = proposals_->uniform(rng_);
   }
   global_ = true;
+  keeping_places_ = options_.recovery.rival_margin > 0.0;
   fit_smoothed_ = 0.0;
   noise_gain_ = options_.motion.noise_gain_max;
 }
@@ -73,7 +74,7 @@ ParticleFilter::StatusJudgement ParticleFilter::status(const PoseEstimate& e, bo
   if (unconfirmed_) {
     return {kUncertain, "the place a search found, not yet checked against the rest of the map"};
   }
-  if (rival_) {
+  if (rival_ || rival_place_) {
     return {kUncertain, "another place of the map fits the scans about as well"};
   }
   if (confirm_scans_seen_ >= 0) {
@@ -186,6 +187,7 @@ void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime
       // first hypothesis (proposals replace its least likely particles).
       confirm_scans_seen_ = -1;
       global_ = true;
+      keeping_places_ = options_.recovery.rival_margin > 0.0;
       noise_gain_ = options_.motion.noise_gain_max;
       return;
     }

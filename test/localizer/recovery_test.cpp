@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -243,6 +244,84 @@ TEST(RecoveryOptions, AdoptTimeAndMarginAreCheckedWithTheirKey) {
       << error_of("recovery: {adopt_margin: 1.5}\n");
   EXPECT_NE(error_of("recovery: {probation_time: -2}\n").find("'recovery.probation_time'"), std::string::npos)
       << error_of("recovery: {probation_time: -2}\n");
+}
+
+// Global localization keeping rival places (rival_places.hpp, opt-in): the
+// robot drives 2 m along the plain room's long side, where its half turn sees
+// the same at every step. Over eight filter seeds.
+struct GlobalRun {
+  double ok_at = -1.0;          // [s] the first OK
+  bool rival_reported = false;  // "another place" said at some scan
+  bool ends_at_a_twin = false;  // within 0.1 m of the truth or its half turn
+};
+
+GlobalRun drive_after_global(const SemanticMap& map, double rival_margin, uint64_t seed) {
+  LocalizerOptions options;
+  options.mode = LocalizerMode::kLfm;
+  options.particles = 1000;
+  options.seed = seed;
+  options.recovery.rival_margin = rival_margin;
+  ParticleFilter filter(map, options, {});
+  filter.initialize_global();
+  GlobalRun run;
+  Pose2 odometry;
+  Pose2 truth;
+  PoseEstimate e;
+  for (int k = 0; k < 240; ++k) {  // 6 s at 40 Hz, 0.33 m/s
+    const double t = static_cast<double>(k) * kScanPeriod * 1e-6;
+    truth = {1.0 + t / 3.0, 0.8, 0.0};
+    if (k > 0) {
+      const Pose2 before = odometry;
+      odometry = compose(odometry, {1.0 / 3.0 * kScanPeriod * 1e-6, 0.0, 0.0});
+      filter.predict(before, odometry);
+    }
+    LaserScan scan = room_scan(map, truth);
+    scan.utime = 1'000'000 + k * kScanPeriod;
+    e = filter.update(scan, nullptr).estimate;
+    if (e.status == LocalizerStatus::kOk && run.ok_at < 0.0) {
+      run.ok_at = t;
+    }
+    run.rival_reported = run.rival_reported || std::string(e.status_reason).find("another place") != std::string::npos;
+  }
+  run.ends_at_a_twin = distance(e.pose, truth) < 0.1 || distance(e.pose, half_turn(truth)) < 0.1;
+  return run;
+}
+
+TEST(GlobalLocalization, KeepingRivalPlacesTheTwinOfASymmetricRoomIsHeldAsARivalAndOkComesLater) {
+  const SemanticMap map = room(false);
+  int rival_before = 0;
+  int rival = 0;
+  int ok_early_before = 0;  // OK within the first 0.5 s
+  int ok_early = 0;
+  int ok_ever = 0;
+  int at_twin_before = 0;  // within 0.1 m of the truth or its half turn at the end
+  int at_twin = 0;
+  for (uint64_t seed = 1; seed <= 8; ++seed) {
+    const GlobalRun before = drive_after_global(map, 0.0, seed);
+    const GlobalRun kept = drive_after_global(map, 50.0, seed);
+    rival_before += before.rival_reported ? 1 : 0;
+    rival += kept.rival_reported ? 1 : 0;
+    ok_early_before += before.ok_at >= 0.0 && before.ok_at < 0.5 ? 1 : 0;
+    ok_early += kept.ok_at >= 0.0 && kept.ok_at < 0.5 ? 1 : 0;
+    ok_ever += kept.ok_at >= 0.0 ? 1 : 0;
+    at_twin_before += before.ends_at_a_twin ? 1 : 0;
+    at_twin += kept.ends_at_a_twin ? 1 : 0;
+  }
+  std::cout << "of 8 seeds, before / keeping places: rival said " << rival_before << " / " << rival
+            << ", OK within 0.5 s " << ok_early_before << " / " << ok_early << " (OK at all, keeping: " << ok_ever
+            << "), ending at a twin " << at_twin_before << " / " << at_twin << "\n";
+  // Measured: before, no rival and 7 of 8 OK within 0.35 s, on either twin. Keeping
+  // places, 7 of 8 hold the twin as a rival and 1 says OK that early, but 6 of 8 say OK
+  // in the end (0.65-2.8 s): in this room the position along its length rests on the
+  // end walls alone, and one cloud lags the truth less than the other, which the
+  // weights then count as evidence (the README's "Rival places").
+  EXPECT_EQ(rival_before, 0);
+  EXPECT_GE(rival, 6);
+  EXPECT_GE(ok_early_before, 6);
+  EXPECT_LE(ok_early, 2);
+  // Either way most end at one of the two (the others 0.2-0.6 m along the room).
+  EXPECT_GE(at_twin_before, 6);
+  EXPECT_GE(at_twin, 6);
 }
 
 }  // namespace
