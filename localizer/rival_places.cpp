@@ -97,6 +97,9 @@ std::vector<Place> places_of(const std::vector<Particle>& set, const PlaceOption
 
 std::vector<const Place*> rivals_in(const std::vector<Place>& places, const PlaceOptions& options) {
   std::vector<const Place*> rivals;
+  if (places.empty()) {
+    return rivals;
+  }
   for (const Place& p : places) {
     if (p.log_weight >= places.front().log_weight - options.margin) {
       rivals.push_back(&p);
@@ -110,6 +113,11 @@ std::vector<Particle> resample_keeping_places(const std::vector<Particle>& set, 
   std::vector<Particle> next;
   if (set.empty() || n == 0) {
     return next;
+  }
+  if (places.empty()) {  // one place of them all: ordinary systematic resampling
+    Place all{set.front().pose, 0.0, std::vector<std::size_t>(set.size())};
+    std::iota(all.members.begin(), all.members.end(), std::size_t{0});
+    return resample_keeping_places(set, {all}, options, n, rng);
   }
   const std::vector<const Place*> kept = rivals_in(places, options);
   std::vector<bool> in_kept(set.size(), false);

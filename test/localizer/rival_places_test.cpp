@@ -110,6 +110,18 @@ TEST(RivalPlaces, WithOnePlaceItIsOrdinarySystematicResampling) {
     EXPECT_NEAR(p.log_weight, std::log(1.0 / 100.0), 1e-9);
   }
   EXPECT_EQ(heavy, 50);  // systematic: exactly its share
+
+  // No places given: one place of them all.
+  std::mt19937 other(3);
+  const std::vector<Particle> without = resample_keeping_places(set, {}, options, 100, other);
+  ASSERT_EQ(without.size(), 100u);
+  int heavy_without = 0;
+  for (const Particle& p : without) {
+    heavy_without += p.pose.x == 0.5 && p.pose.y == 0.5 ? 1 : 0;
+    EXPECT_NEAR(p.log_weight, std::log(1.0 / 100.0), 1e-9);
+  }
+  EXPECT_EQ(heavy_without, 50);
+  EXPECT_TRUE(rivals_in({}, options).empty());
 }
 
 }  // namespace
