@@ -15,10 +15,12 @@
 // its particles since it was found, as Bayes' rule has it. The places within
 // `margin` nats of the best share the particles equally: a place's weight is
 // a sum over its particles, and in log space the sum over a few spread ones
-// falls tens of nats short of one over many (541 beams at 0.05 each: the
-// twin of a symmetric room lost 50 nats in two scans with 15 particles
-// against 900), so unequal counts would decide by sampling alone. A place
-// further behind gets its share by weight, as before, and is gone.
+// falls tens of nats short of one over many (541 beams at 0.05 each: with
+// shares by weight and a floor, the twin of a symmetric room fell 50 nats
+// behind in two scans, 11 particles against 916), so unequal counts would
+// decide by sampling alone. A place further behind gets its share by weight,
+// as before, and is gone. (The filter also weighs a scan only after the robot
+// moved, particle_filter.hpp: the same view again is no new evidence.)
 #pragma once
 
 #include <cstddef>

@@ -235,7 +235,7 @@ TEST(Recovery, WhereAnotherPlaceLooksAlikeTheStatusStaysUncertainAfterTheProbati
   EXPECT_LT(run.rival_since, run.adopted_at + probation + 1.5);
 }
 
-TEST(RecoveryOptions, AdoptTimeAndMarginAreCheckedWithTheirKey) {
+TEST(RecoveryOptions, AdoptTimeMarginsAndRivalPlacesAreCheckedWithTheirKey) {
   const auto error_of = localizer_options_error;
   EXPECT_EQ(error_of("recovery: {adopt_time: 0, adopt_margin: 0.2}\n"), "");
   EXPECT_NE(error_of("recovery: {adopt_time: -1}\n").find("'recovery.adopt_time'"), std::string::npos)
@@ -244,6 +244,11 @@ TEST(RecoveryOptions, AdoptTimeAndMarginAreCheckedWithTheirKey) {
       << error_of("recovery: {adopt_margin: 1.5}\n");
   EXPECT_NE(error_of("recovery: {probation_time: -2}\n").find("'recovery.probation_time'"), std::string::npos)
       << error_of("recovery: {probation_time: -2}\n");
+  EXPECT_EQ(error_of("recovery: {rival_margin: 0, rival_places: 1}\n"), "");
+  EXPECT_NE(error_of("recovery: {rival_margin: -5}\n").find("'recovery.rival_margin'"), std::string::npos)
+      << error_of("recovery: {rival_margin: -5}\n");
+  EXPECT_NE(error_of("recovery: {rival_places: 0}\n").find("'recovery.rival_places'"), std::string::npos)
+      << error_of("recovery: {rival_places: 0}\n");
 }
 
 // Global localization keeping rival places (rival_places.hpp, opt-in): the
