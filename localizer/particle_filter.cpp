@@ -375,44 +375,51 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
 PoseEstimate ParticleFilter::estimate() const {
   if (keeping_places_ && !particles_.empty()) {
     // Between two places 6 m apart the mean is in neither: the most likely place's.
-    return estimate_of(places_of(particles_, place_options()).front().members);
+    return estimate_of(&places_of(particles_, place_options()).front().members);
   }
-  return estimate_of({});
+  return estimate_of(nullptr);
 }
 
-PoseEstimate ParticleFilter::estimate_of(const std::vector<std::size_t>& members) const {
+PoseEstimate ParticleFilter::estimate_of(const std::vector<std::size_t>* members) const {
   PoseEstimate e;
   if (particles_.empty()) {
     return e;
   }
-  double all_sum = 0.0;
-  double all_squares = 0.0;
-  for (const Particle& p : particles_) {
-    const double w = std::exp(p.log_weight);
-    all_sum += w;
-    all_squares += w * w;
-  }
-  std::vector<std::size_t> indices = members;
-  if (indices.empty()) {
-    indices.resize(particles_.size());
-    std::iota(indices.begin(), indices.end(), std::size_t{0});
-  }
+  // Tracking (no members: every particle) the effective sample size comes out
+  // of the same pass; a place's estimate needs the whole set's apart.
+  const std::size_t count = members != nullptr ? members->size() : particles_.size();
+  const auto particle = [&](std::size_t k) -> const Particle& {
+    return particles_[members != nullptr ? (*members)[k] : k];
+  };
   std::vector<double> weights;
   std::vector<double> headings;
-  for (const std::size_t i : indices) {
-    const Particle& p = particles_[i];
+  double sum_squares = 0.0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Particle& p = particle(k);
     const double w = std::exp(p.log_weight);
     weights.push_back(w);
     headings.push_back(p.pose.theta);
     e.pose.x += w * p.pose.x;
     e.pose.y += w * p.pose.y;
+    sum_squares += w * w;
   }
   const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  double all_sum = total;
+  double all_squares = sum_squares;
+  if (members != nullptr) {
+    all_sum = 0.0;
+    all_squares = 0.0;
+    for (const Particle& p : particles_) {
+      const double w = std::exp(p.log_weight);
+      all_sum += w;
+      all_squares += w * w;
+    }
+  }
   e.pose.x /= total;
   e.pose.y /= total;
-  e.pose.theta = circular_mean(headings, weights).value_or(particles_[indices.front()].pose.theta);
-  for (std::size_t k = 0; k < indices.size(); ++k) {
-    const Particle& p = particles_[indices[k]];
+  e.pose.theta = circular_mean(headings, weights).value_or(particle(0).pose.theta);
+  for (std::size_t k = 0; k < count; ++k) {
+    const Particle& p = particle(k);
     const double w = weights[k] / total;
     const double d[3] = {p.pose.x - e.pose.x, p.pose.y - e.pose.y, angle_diff(p.pose.theta, e.pose.theta)};
     for (int r = 0; r < 3; ++r) {
@@ -465,26 +472,11 @@ void ParticleFilter::resample() {
 }
 
 std::vector<Particle> ParticleFilter::resampled(const std::vector<Particle>& set, std::size_t n, std::mt19937& rng) {
-  // Systematic (low-variance) resampling: one random offset, n evenly spaced
-  // pointers into the normalized weights of `set`.
   std::vector<Particle> next;
-  if (set.empty() || n == 0) {
-    return next;
-  }
-  std::uniform_real_distribution<double> offset(0.0, 1.0 / static_cast<double>(n));
-  double pointer = offset(rng);
-  double cumulative = std::exp(set[0].log_weight);
-  std::size_t source = 0;
+  std::vector<std::size_t> all(set.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
   next.reserve(n);
-  const double log_uniform = -std::log(static_cast<double>(n));
-  for (std::size_t i = 0; i < n; ++i) {
-    while (pointer > cumulative && source + 1 < set.size()) {
-      ++source;
-      cumulative += std::exp(set[source].log_weight);
-    }
-    next.push_back({set[source].pose, log_uniform});
-    pointer += 1.0 / static_cast<double>(n);
-  }
+  systematic_draw(set, all, 0.0, 1.0, n, -std::log(static_cast<double>(n)), rng, &next);
   return next;
 }
 

@@ -179,8 +179,8 @@ class ParticleFilter {
   // The odometry increment, corrected (correction_), applied to every particle with noise.
   void move_particles(const OdometryIncrement& raw);
   PlaceOptions place_options() const;
-  // The estimate over `members` of the particles (all when empty).
-  PoseEstimate estimate_of(const std::vector<std::size_t>& members) const;
+  // The estimate over `members` of the particles (every particle when null).
+  PoseEstimate estimate_of(const std::vector<std::size_t>* members) const;
 
   LocalizerOptions options_;
   Pose2 mount_;

@@ -15,20 +15,20 @@ bool close_to(const Pose2& a, const Pose2& b, const PlaceOptions& options) {
   return std::hypot(a.x - b.x, a.y - b.y) <= options.radius && std::abs(angle_diff(a.theta, b.theta)) <= options.turn;
 }
 
-// `count` draws by systematic resampling from set[indices] weighted by their
-// linear weights relative to `peak` (log), each with log weight `log_weight`.
-void draw(const std::vector<Particle>& set, const std::vector<std::size_t>& indices, double peak, std::size_t count,
-          double log_weight, std::mt19937& rng, std::vector<Particle>* out) {
+}  // namespace
+
+void systematic_draw(const std::vector<Particle>& set, const std::vector<std::size_t>& indices, double reference,
+                     std::optional<double> total, std::size_t count, double log_weight, std::mt19937& rng,
+                     std::vector<Particle>* out) {
   if (count == 0 || indices.empty()) {
     return;
   }
   std::vector<double> weights;
   weights.reserve(indices.size());
   for (const std::size_t i : indices) {
-    weights.push_back(std::exp(set[i].log_weight - peak));
+    weights.push_back(std::exp(set[i].log_weight - reference));
   }
-  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
-  const double step = total / static_cast<double>(count);
+  const double step = total.value_or(std::accumulate(weights.begin(), weights.end(), 0.0)) / static_cast<double>(count);
   std::uniform_real_distribution<double> offset(0.0, step);
   double pointer = offset(rng);
   double cumulative = weights[0];
@@ -42,8 +42,6 @@ void draw(const std::vector<Particle>& set, const std::vector<std::size_t>& indi
     pointer += step;
   }
 }
-
-}  // namespace
 
 std::vector<Place> places_of(const std::vector<Particle>& set, const PlaceOptions& options) {
   std::vector<std::size_t> order(set.size());
@@ -151,11 +149,12 @@ std::vector<Particle> resample_keeping_places(const std::vector<Particle>& set, 
   counts.push_back(rest_count);
   next.reserve(n);
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    draw(set, kept[k]->members, peak, counts[k], kept[k]->log_weight - std::log(static_cast<double>(counts[k])), rng,
-         &next);
+    systematic_draw(set, kept[k]->members, peak, std::nullopt, counts[k],
+                    kept[k]->log_weight - std::log(static_cast<double>(counts[k])), rng, &next);
   }
   if (counts.back() > 0) {
-    draw(set, rest, peak, counts.back(), rest_log_weight - std::log(static_cast<double>(counts.back())), rng, &next);
+    systematic_draw(set, rest, peak, std::nullopt, counts.back(),
+                    rest_log_weight - std::log(static_cast<double>(counts.back())), rng, &next);
   }
   return next;
 }

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -51,6 +52,15 @@ struct PlaceOptions {
   std::size_t max_places = 8;  // the places of most weight kept; the others' particles are of no place
   double margin = 50.0;        // [nats] a place this far behind the best is a rival no more
 };
+
+// Systematic (low-variance) resampling: `count` draws from set[indices] by
+// their weights exp(log_weight - reference), one random offset and evenly
+// spaced pointers, appended to `out` each with log weight `log_weight`.
+// `total`: those weights' sum where known (1 for a normalized set and
+// reference 0), else they are summed.
+void systematic_draw(const std::vector<Particle>& set, const std::vector<std::size_t>& indices, double reference,
+                     std::optional<double> total, std::size_t count, double log_weight, std::mt19937& rng,
+                     std::vector<Particle>* out);
 
 // Places of `set` (log weights normalized), the most likely first: each
 // particle, in order of weight, joins the earliest place whose seed it is
