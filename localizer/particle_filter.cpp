@@ -273,6 +273,9 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   if (!keeping_places_) {
     match_locally(beams.points, turn_during_sweep(scan), &result);
   }
+  // Deciding between places: each is scored at its best pose (score_places).
+  const std::vector<Place> scored_places =
+      weigh && keeping_places_ && !global_ ? places_of(particles_, place_options()) : std::vector<Place>{};
   std::vector<double> log_likelihood(particles_.size());
   std::vector<double> beam_part(particles_.size());
   for (std::size_t i = 0; i < particles_.size(); ++i) {
@@ -282,6 +285,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
       particles_[i].log_weight += log_likelihood[i];
     }
   }
+  score_places(scored_places, log_likelihood, beams, prepared_objects);
   normalize(&particles_);
   if (keeping_places_) {
     const PlaceOptions places = place_options();
@@ -375,7 +379,11 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
 PoseEstimate ParticleFilter::estimate() const {
   if (keeping_places_ && !particles_.empty()) {
     // Between two places 6 m apart the mean is in neither: the most likely place's.
-    return estimate_of(&places_of(particles_, place_options()).front().members);
+    PoseEstimate e = estimate_of(&places_of(particles_, place_options()).front().members);
+    if (held_motion_) {  // the particles wait for the next weighing; the estimate does not
+      e.pose = compose(e.pose, *held_motion_);
+    }
+    return e;
   }
   return estimate_of(nullptr);
 }

@@ -19,8 +19,9 @@
 // after a request for global localization, each scan proposes poses from the
 // whole map (global_proposals.hpp) that replace the least likely particles,
 // and the places that fit about as well are kept side by side, each with its
-// share of the particles and the weight the scans gave it, until one leads
-// (rival_places.hpp; meanwhile scans weigh only after the robot moved);
+// share of the particles and the weight the scans gave it at its best pose
+// nearby, until one leads (rival_places.hpp; meanwhile scans weigh only after
+// the robot moved);
 // while LOST, the proposals compete in a cloud of their own and the tracked
 // cloud moves to their place only once it has fitted the scans clearly better
 // for recovery.adopt_time (a kidnapping prior), so the filter relocalizes by
@@ -179,6 +180,12 @@ class ParticleFilter {
   // The odometry increment, corrected (correction_), applied to every particle with noise.
   void move_particles(const OdometryIncrement& raw);
   PlaceOptions place_options() const;
+  // Keeping places, after a weighed scan: each of `places` (found before it
+  // weighed, their log weights then) gains the scan's likelihood at the pose
+  // near its most likely particle where the scan fits best, in place of the
+  // sum over its particles (particle_filter_robust.cpp).
+  void score_places(const std::vector<Place>& places, const std::vector<double>& log_likelihood,
+                    const PreparedScan& beams, const PreparedObjects& objects);
   // The estimate over `members` of the particles (every particle when null).
   PoseEstimate estimate_of(const std::vector<std::size_t>* members) const;
 

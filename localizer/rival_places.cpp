@@ -106,6 +106,30 @@ std::vector<const Place*> rivals_in(const std::vector<Place>& places, const Plac
   return rivals;
 }
 
+void rescore_places(std::vector<Particle>* set, const std::vector<Place>& places, const std::vector<double>& totals) {
+  for (std::size_t k = 0; k < places.size() && k < totals.size(); ++k) {
+    const std::vector<std::size_t>& members = places[k].members;
+    if (members.empty()) {
+      continue;
+    }
+    double peak = -std::numeric_limits<double>::infinity();
+    for (const std::size_t i : members) {
+      peak = std::max(peak, (*set)[i].log_weight);
+    }
+    if (!std::isfinite(peak)) {
+      continue;  // every particle of it at zero weight: no relative weights to keep
+    }
+    double sum = 0.0;
+    for (const std::size_t i : members) {
+      sum += std::exp((*set)[i].log_weight - peak);
+    }
+    const double shift = totals[k] - (peak + std::log(sum));
+    for (const std::size_t i : members) {
+      (*set)[i].log_weight += shift;
+    }
+  }
+}
+
 std::vector<Particle> resample_keeping_places(const std::vector<Particle>& set, const std::vector<Place>& places,
                                               const PlaceOptions& options, std::size_t n, std::mt19937& rng) {
   std::vector<Particle> next;

@@ -20,7 +20,9 @@
 // behind in two scans, 11 particles against 916), so unequal counts would
 // decide by sampling alone. A place further behind gets its share by weight,
 // as before, and is gone. (The filter also weighs a scan only after the robot
-// moved, particle_filter.hpp: the same view again is no new evidence.)
+// moved, particle_filter.hpp: the same view again is no new evidence; and it
+// scores each place at its best pose nearby, rescore_places: a sum over a
+// place's particles depends on how near the best pose its cloud happens to be.)
 #pragma once
 
 #include <cstddef>
@@ -70,6 +72,11 @@ std::vector<Place> places_of(const std::vector<Particle>& set, const PlaceOption
 
 // The places within options.margin of the best (the best included).
 std::vector<const Place*> rivals_in(const std::vector<Place>& places, const PlaceOptions& options);
+
+// Sets each place's total weight to totals[k] (places[k], in order), its
+// particles keeping their weights relative to each other. The particles of
+// no place are left as they are.
+void rescore_places(std::vector<Particle>* set, const std::vector<Place>& places, const std::vector<double>& totals);
 
 // `n` particles from `set` (log weights normalized): the rest (places
 // further than the margin behind the best, particles of no place) their

@@ -94,6 +94,33 @@ TEST(RivalPlaces, ResamplingSharesTheParticlesEquallyAmongRivalsAndKeepsEachOnes
   EXPECT_NEAR(weight_near(next, kB) / total, 0.1, 1e-9);
 }
 
+TEST(RivalPlaces, RescoringSetsEachPlacesTotalAndKeepsItsParticlesRelativeWeights) {
+  std::vector<Particle> set = three_places();
+  set[0].log_weight += std::log(3.0);  // within A, one particle three times the others
+  const std::vector<Place> places = places_of(set, PlaceOptions{});
+  ASSERT_EQ(places.size(), 3u);
+  const std::vector<Particle> before = set;
+  // A and B swap totals; C is not given one and is left as it was.
+  rescore_places(&set, places, {std::log(0.1), std::log(0.9)});
+  double a = 0.0;
+  double b = 0.0;
+  for (const std::size_t i : places[0].members) {
+    a += std::exp(set[i].log_weight);
+  }
+  for (const std::size_t i : places[1].members) {
+    b += std::exp(set[i].log_weight);
+  }
+  EXPECT_NEAR(a, 0.1, 1e-12);
+  EXPECT_NEAR(b, 0.9, 1e-12);
+  EXPECT_NEAR(set[0].log_weight - set[1].log_weight, std::log(3.0), 1e-12);
+  for (const std::size_t i : places[2].members) {
+    EXPECT_EQ(set[i].log_weight, before[i].log_weight);
+  }
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    EXPECT_EQ(set[i].pose.x, before[i].pose.x);
+  }
+}
+
 TEST(RivalPlaces, WithOnePlaceItIsOrdinarySystematicResampling) {
   std::vector<Particle> set;
   add(&set, kA, 50, std::log(0.5 / 50.0));
