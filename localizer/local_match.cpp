@@ -137,4 +137,21 @@ LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points,
   return {base(matched.sensor), matched.score / static_cast<double>(used), base(refined(other.value_or(best)).sensor)};
 }
 
+Pose2 climb_locally(const LikelihoodField& field, const ScanPoints& points, const Pose2& mount, const Pose2& start,
+                    double shift, double turn, int beams) {
+  if (points.x.empty()) {
+    return start;
+  }
+  const GridGeometry& g = field.geometry();
+  const std::size_t step = std::max<std::size_t>(1, points.x.size() / static_cast<std::size_t>(std::max(beams, 1)));
+  const Pose2 sensor = sensor_in_cells(g, start, mount);
+  const double step_cells = 2.0 * shift / g.resolution;  // refine() starts at half the grid's step
+  const Scored from{sensor, field_log_likelihood(field, points, sensor, step)};
+  const Scored climbed =
+      refine(field, points, step, sensor, 2.0 * step_cells, 4.0 * turn, step_cells, 2.0 * turn, from);
+  return compose(compose(g.origin, {climbed.sensor.x * g.resolution, climbed.sensor.y * g.resolution,
+                                    wrap_angle(climbed.sensor.theta)}),
+                 inverse(mount));
+}
+
 }  // namespace slamer

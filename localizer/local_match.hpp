@@ -47,4 +47,12 @@ struct LocalMatch {
 LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points, const Pose2& mount,
                          const Pose2& predicted, const LocalMatchWindow& window);
 
+// Coordinate ascent from the base pose `start`, as the match refines its best
+// pose: first steps of `shift` [m] and `turn` [rad], halving three times,
+// never further than 4 x those from `start`; the scan thinned to about
+// `beams`. Where a pose drawn at random (a global proposal) is nearest the
+// scan's fit, not where the draw put it.
+Pose2 climb_locally(const LikelihoodField& field, const ScanPoints& points, const Pose2& mount, const Pose2& start,
+                    double shift, double turn, int beams);
+
 }  // namespace slamer

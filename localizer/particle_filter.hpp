@@ -17,7 +17,8 @@
 // while the prediction fits the scan poorly, a local scan match
 // (local_match.hpp) puts some particles where the scan fits best nearby;
 // after a request for global localization, each scan proposes poses from the
-// whole map (global_proposals.hpp) that replace the least likely particles,
+// whole map (global_proposals.hpp), each moved to where the scan fits near it
+// (climb_locally), that replace the least likely particles,
 // and the places that fit about as well are kept side by side, each with its
 // share of the particles and the weight the scans gave it at its best pose
 // nearby, until one leads (rival_places.hpp; meanwhile scans weigh only after

@@ -95,6 +95,28 @@ TEST_F(LocalMatchTest, WithoutPointsKeepsThePrediction) {
   EXPECT_EQ(m.mean_log_likelihood, 0.0);
 }
 
+// A global proposal: a random pose some way off the one the scan was taken
+// at climbs to it; with no points it stays; it never goes further than 4x
+// its first steps.
+TEST_F(LocalMatchTest, AClimbFromAPoseNearTheTruthEndsAtTheTruth) {
+  const Pose2 truth{2.0, 3.0, 0.3};
+  const ScanPoints points = end_points(w.scan_at(truth), w.map.geometry.resolution);
+  const Pose2 mount = w.robot.lidar.mount;
+  for (const Pose2& off : {Pose2{0.15, 0.0, 0.0}, Pose2{0.0, -0.12, 0.08}, Pose2{-0.1, 0.1, -0.1}}) {
+    const Pose2 climbed = climb_locally(field, points, mount, compose(truth, off), 0.1, 0.05, 90);
+    // Within a cell, as the match (the field's levels are quantized).
+    EXPECT_NEAR(climbed.x, truth.x, 0.05) << off.x << " " << off.y << " " << off.theta;
+    EXPECT_NEAR(climbed.y, truth.y, 0.05) << off.x << " " << off.y << " " << off.theta;
+    EXPECT_NEAR(angle_diff(climbed.theta, truth.theta), 0.0, 0.01) << off.x << " " << off.y << " " << off.theta;
+  }
+  const Pose2 far{3.5, 3.0, 0.3};  // 1.5 m off: the climb's reach is 4 x 0.1 m of the sensor
+  const Pose2 from_far = climb_locally(field, points, mount, far, 0.1, 0.05, 90);
+  EXPECT_LE(std::hypot(from_far.x - far.x, from_far.y - far.y), 0.4 + 0.15 * 0.2 + 1e-6);
+  const Pose2 without = climb_locally(field, {}, mount, far, 0.1, 0.05, 90);
+  EXPECT_EQ(without.x, far.x);
+  EXPECT_EQ(without.theta, far.theta);
+}
+
 // A corridor 4 m wide with fins 1 m deep every 0.6 m along both walls,
 // longer than the lidar reaches: a scan in it fits every 0.6 m along it.
 SemanticMap finned_corridor() {
