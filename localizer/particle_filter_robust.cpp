@@ -207,8 +207,8 @@ void ParticleFilter::inject(const ScanPoints& points, UpdateResult* result) {
       proposals_->propose(field_, points, mount_, options_.recovery.candidates, keep, kProposalBeams, rng_);
   // Each to where the scan fits best near it: a random pose is some way off
   // the pose it stands for, and weighed there it loses tens of nats to a
-  // cloud the scans have refined, so a place found later (the twin of a
-  // symmetric room, the search at every beam: 3 of 8 seeds) was never held.
+  // cloud the scans have refined, so a place the search came upon later was
+  // never held (the twin of a symmetric room at every beam, in 3 of 8 seeds).
   for (Pose2& p : poses) {
     p = climb_locally(field_, points, mount_, p, kMatchShiftStep, 2.0 * kMatchTurnStep, kProposalBeams);
   }
