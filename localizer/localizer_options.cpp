@@ -179,6 +179,7 @@ void read_options(const ConfigReader& reader, RecoveryOptions* o) {
   reader.read("probation_time", &o->probation_time, in_range(0.0, 600.0));
   reader.read("rival_margin", &o->rival_margin, in_range(0.0, 1e6));
   reader.read("rival_places", &o->rival_places, in_range(1, 64));
+  reader.read("late_proposals", &o->late_proposals, in_range(0.0, 1.0));
   read_options(reader.section("local"), &o->local);
 }
 

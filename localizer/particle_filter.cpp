@@ -273,6 +273,9 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   if (!keeping_places_) {
     match_locally(beams.points, turn_during_sweep(scan), &result);
   }
+  if (weigh && keeping_places_ && !global_ && updated_) {
+    propose_late(beams.points, &result);
+  }
   // Deciding between places: each is scored at its best pose (score_places).
   const std::vector<Place> scored_places =
       weigh && keeping_places_ && !global_ ? places_of(particles_, place_options()) : std::vector<Place>{};

@@ -22,7 +22,7 @@
 // and the places that fit about as well are kept side by side, each with its
 // share of the particles and the weight the scans gave it at its best pose
 // nearby, until one leads (rival_places.hpp; meanwhile scans weigh only after
-// the robot moved);
+// the robot moved, and a few late proposals may add a place the search missed);
 // while LOST, the proposals compete in a cloud of their own and the tracked
 // cloud moves to their place only once it has fitted the scans clearly better
 // for recovery.adopt_time (a kidnapping prior), so the filter relocalizes by
@@ -144,6 +144,12 @@ class ParticleFilter {
   // `n` draws from `set` (normalized) by systematic resampling, weights uniform.
   std::vector<Particle> resampled(const std::vector<Particle>& set, std::size_t n, std::mt19937& rng);
   void inject(const ScanPoints& points, UpdateResult* result);
+  // The best `keep` global proposals for the scan, each climbed to where it fits best nearby.
+  std::vector<Pose2> climbed_proposals(const ScanPoints& points, int keep);
+  // Keeping places after the search: a few climbed proposals join, margin
+  // behind the best place, so a place the search missed can still become a
+  // rival by fitting better than the best place (particle_filter_robust.cpp).
+  void propose_late(const ScanPoints& points, UpdateResult* result);
   // While LOST with a tracked cloud (particle_filter_challengers.cpp): global
   // proposals in a cloud of their own, adopted only once one place has fitted
   // better than the tracked cloud for recovery.adopt_time.
@@ -159,8 +165,12 @@ class ParticleFilter {
   double turn_during_sweep(const LaserScan& scan) const;
   // Puts `poses` in place of the least likely particles, with the weight of the
   // most likely one: the scan's full measurement model then decides.
-  void replace_least_likely(const std::vector<Pose2>& poses) { replace_least_likely(&particles_, poses); }
-  static void replace_least_likely(std::vector<Particle>* set, const std::vector<Pose2>& poses);
+  void replace_least_likely(const std::vector<Pose2>& poses, std::optional<double> log_weight = std::nullopt) {
+    replace_least_likely(&particles_, poses, log_weight);
+  }
+  // `log_weight`: theirs instead of the most likely one's.
+  static void replace_least_likely(std::vector<Particle>* set, const std::vector<Pose2>& poses,
+                                   std::optional<double> log_weight = std::nullopt);
   void update_fit(double fit, const PoseEstimate& e, int64_t utime);
   // `with_slide_rules` false: without the rules that see a slide along the
   // heading (the odometry agreement, the along-track evidence): what the

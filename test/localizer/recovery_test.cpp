@@ -235,7 +235,7 @@ TEST(Recovery, WhereAnotherPlaceLooksAlikeTheStatusStaysUncertainAfterTheProbati
   EXPECT_LT(run.rival_since, run.adopted_at + probation + 1.5);
 }
 
-TEST(RecoveryOptions, AdoptTimeMarginsAndRivalPlacesAreCheckedWithTheirKey) {
+TEST(RecoveryOptions, AdoptTimeMarginsRivalPlacesAndLateProposalsAreCheckedWithTheirKey) {
   const auto error_of = localizer_options_error;
   EXPECT_EQ(error_of("recovery: {adopt_time: 0, adopt_margin: 0.2}\n"), "");
   EXPECT_NE(error_of("recovery: {adopt_time: -1}\n").find("'recovery.adopt_time'"), std::string::npos)
@@ -249,6 +249,9 @@ TEST(RecoveryOptions, AdoptTimeMarginsAndRivalPlacesAreCheckedWithTheirKey) {
       << error_of("recovery: {rival_margin: -5}\n");
   EXPECT_NE(error_of("recovery: {rival_places: 0}\n").find("'recovery.rival_places'"), std::string::npos)
       << error_of("recovery: {rival_places: 0}\n");
+  EXPECT_EQ(error_of("recovery: {late_proposals: 0}\n"), "");
+  EXPECT_NE(error_of("recovery: {late_proposals: 1.5}\n").find("'recovery.late_proposals'"), std::string::npos)
+      << error_of("recovery: {late_proposals: 1.5}\n");
 }
 
 // Global localization keeping rival places (rival_places.hpp): the
