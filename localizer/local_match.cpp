@@ -56,6 +56,12 @@ Scored refine(const LikelihoodField& field, const ScanPoints& points, std::size_
   return from;
 }
 
+// Back from the sensor in cells (sensor_in_cells) to the base in the map frame.
+Pose2 base_in_map(const GridGeometry& g, const Pose2& sensor, const Pose2& mount) {
+  return compose(compose(g.origin, {sensor.x * g.resolution, sensor.y * g.resolution, wrap_angle(sensor.theta)}),
+                 inverse(mount));
+}
+
 }  // namespace
 
 LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points, const Pose2& mount,
@@ -127,14 +133,10 @@ LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points,
   const auto refined = [&](const Scored& from) {
     return refine(field, points, step, start, shift_cells, window.turn, step_cells, turn_step, from);
   };
-  // Back from the sensor in cells to the base in the map frame.
-  const auto base = [&](const Pose2& sensor) {
-    return compose(compose(g.origin, {sensor.x * g.resolution, sensor.y * g.resolution, wrap_angle(sensor.theta)}),
-                   inverse(mount));
-  };
   const Scored matched = refined(best);
   const std::size_t used = (points.x.size() + step - 1) / step;
-  return {base(matched.sensor), matched.score / static_cast<double>(used), base(refined(other.value_or(best)).sensor)};
+  return {base_in_map(g, matched.sensor, mount), matched.score / static_cast<double>(used),
+          base_in_map(g, refined(other.value_or(best)).sensor, mount)};
 }
 
 Pose2 climb_locally(const LikelihoodField& field, const ScanPoints& points, const Pose2& mount, const Pose2& start,
@@ -149,9 +151,7 @@ Pose2 climb_locally(const LikelihoodField& field, const ScanPoints& points, cons
   const Scored from{sensor, field_log_likelihood(field, points, sensor, step)};
   const Scored climbed =
       refine(field, points, step, sensor, 2.0 * step_cells, 4.0 * turn, step_cells, 2.0 * turn, from);
-  return compose(compose(g.origin, {climbed.sensor.x * g.resolution, climbed.sensor.y * g.resolution,
-                                    wrap_angle(climbed.sensor.theta)}),
-                 inverse(mount));
+  return base_in_map(g, climbed.sensor, mount);
 }
 
 }  // namespace slamer
