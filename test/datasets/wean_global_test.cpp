@@ -1,0 +1,90 @@
+// Global localization on a real log with no reference: CMU Wean Hall
+// robotdata1 through the real programs, as tools/datasets/wean_global.sh runs
+// it (slamer-mapgen --wean, slamer-carmen2lcm --format cmu, slamer-localizer
+// --global with the shipped config at 5000 particles, every beam). Wean has no
+// ground truth: "home" is the spot where the runs of logs 1-4 that agree end
+// (README, "Global localization on the Wean logs"), where the robot is kept.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "common/process/decode.hpp"
+#include "common/process/event_log.hpp"
+#include "slamer/pose_estimate_t.hpp"
+#include "test/support/child_process.hpp"
+
+namespace slamer {
+namespace {
+
+constexpr double kHomeX = 39.9;  // [m] log 1's home spot
+constexpr double kHomeY = 41.5;
+
+// The last POSE of a localizer's output log.
+pose_estimate_t last_pose(const std::string& path) {
+  pose_estimate_t last;
+  EventLogReader reader(path);
+  while (const auto event = reader.next()) {
+    if (event->channel == "POSE") {
+      pose_estimate_t m;
+      if (decode_message(event->data.data(), event->data.size(), &m) == DecodeStatus::kOk) {
+        last = m;
+      }
+    }
+  }
+  return last;
+}
+
+// Log 1 drives west along a corridor whose doors and bays repeat 14 m east.
+// Each kept place was scored at its best pose within 0.5 m at every weighing,
+// free of the odometry: in seed 2 the look-alike slid back along its corridor
+// scan after scan, stood still while the robot drove 8 m and overtook home at
+// scan 405; seeds 1-3 ended 18-31 m away, and none of seeds 1-12 home. With a
+// prior on that offset 10 of seeds 1-12 end home, the other two 0.9-1.3 m off.
+TEST(WeanGlobalLocalization, Log1EndsAtTheHomeSpotInTwoOfThreeSeeds) {
+  const std::string data = std::string(SLAMER_SOURCE_DIR) + "/../shared/datasets/cmu_wean_16831/";
+  if (!std::filesystem::exists(data + "robotdata1.log.gz")) {
+    GTEST_SKIP() << "../shared/datasets/cmu_wean_16831 is absent";
+  }
+  const std::string dir = (std::filesystem::temp_directory_path() / "slamer_wean_global_test").string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  test::ChildProcess mapgen(test::binary_path("slamer-mapgen"), {"--wean", data + "wean.dat.gz", dir + "/map"});
+  ASSERT_EQ(mapgen.wait(60), 0) << mapgen.stderr_text();
+  test::ChildProcess convert(test::binary_path("slamer-carmen2lcm"),
+                             {data + "robotdata1.log.gz", dir + "/log1.lcm", "--format", "cmu"});
+  ASSERT_EQ(convert.wait(60), 0) << convert.stderr_text();
+  const std::string shipped = test::read_file(std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml");
+  const std::string config = std::regex_replace(shipped, std::regex("\n  particles: [0-9]+"), "\n  particles: 5000");
+  ASSERT_NE(config.find("\n  particles: 5000"), std::string::npos);
+  {
+    std::ofstream out(dir + "/localizer.yaml");
+    out << config;
+  }
+  int home = 0;
+  std::string ends;
+  for (int seed = 1; seed <= 3; ++seed) {
+    const std::string run = dir + "/run" + std::to_string(seed) + ".lcm";
+    test::ChildProcess localizer(
+        test::binary_path("slamer-localizer"),
+        {"--config", dir + "/localizer.yaml", "--map", dir + "/map/map.yaml", "--robot",
+         std::string(SLAMER_SOURCE_DIR) + "/config/robots/cmu_wean.yaml", "--mode", "lfm", "--seed",
+         std::to_string(seed), "--global", "--replay", dir + "/log1.lcm", "--out", run});
+    ASSERT_EQ(localizer.wait(120), 0) << localizer.stderr_text();
+    const pose_estimate_t end = last_pose(run);
+    const double off = std::hypot(end.x - kHomeX, end.y - kHomeY);
+    home += off < 0.5 ? 1 : 0;
+    ends += " " + std::to_string(off);
+  }
+  RecordProperty("end_offsets_m", ends);
+  // Measured: 0.04 and 0.08 m (seeds 1, 2), 1.31 m (seed 3, never settled);
+  // before the prior 31.0, 18.3 and 18.1 m.
+  EXPECT_GE(home, 2) << "metres from home at the end:" << ends;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace slamer
