@@ -2,8 +2,9 @@
 // robotdata1 through the real programs, as tools/datasets/wean_global.sh runs
 // it (slamer-mapgen --wean, slamer-carmen2lcm --format cmu, slamer-localizer
 // --global with the shipped config at 5000 particles, every beam). Wean has no
-// ground truth: "home" is the spot where the runs of logs 1-4 that agree end
-// (README, "Global localization on the Wean logs"), where the robot is kept.
+// ground truth: "home" is where log 1's agreeing runs end, within 1 m of where
+// those of logs 3 and 4 do, the spot the robot is kept (README, "Real recorded
+// logs": the Wean tables).
 #include <gtest/gtest.h>
 
 #include <cmath>
