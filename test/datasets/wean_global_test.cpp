@@ -9,34 +9,17 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <string>
+#include <vector>
 
-#include "common/process/decode.hpp"
-#include "common/process/event_log.hpp"
-#include "slamer/pose_estimate_t.hpp"
 #include "test/support/child_process.hpp"
+#include "tools/datasets/bench_files.hpp"
 
 namespace slamer {
 namespace {
 
 constexpr double kHomeX = 39.9;  // [m] log 1's home spot
 constexpr double kHomeY = 41.5;
-
-// The last POSE of a localizer's output log.
-pose_estimate_t last_pose(const std::string& path) {
-  pose_estimate_t last;
-  EventLogReader reader(path);
-  while (const auto event = reader.next()) {
-    if (event->channel == "POSE") {
-      pose_estimate_t m;
-      if (decode_message(event->data.data(), event->data.size(), &m) == DecodeStatus::kOk) {
-        last = m;
-      }
-    }
-  }
-  return last;
-}
 
 // Log 1 drives west along a corridor whose doors and bays repeat 14 m east.
 // Each kept place was scored at its best pose within 0.5 m at every weighing,
@@ -57,31 +40,23 @@ TEST(WeanGlobalLocalization, Log1EndsAtTheHomeSpotInTwoOfThreeSeeds) {
   test::ChildProcess convert(test::binary_path("slamer-carmen2lcm"),
                              {data + "robotdata1.log.gz", dir + "/log1.lcm", "--format", "cmu"});
   ASSERT_EQ(convert.wait(60), 0) << convert.stderr_text();
-  // The shipped config at 5000 particles, as the script's sed makes it (no std::regex: under
-  // the sanitizers GCC 12 warns a false -Wmaybe-uninitialized inside it).
-  std::string config = test::read_file(std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml");
-  const std::string key = "\n  particles: ";
-  const std::size_t at = config.find(key, config.find("\nlocalizer:"));  // not the channel of that name
-  ASSERT_NE(at, std::string::npos);
-  const std::size_t value = at + key.size();
-  config.replace(value, config.find_first_not_of("0123456789", value) - value, "5000");
-  ASSERT_EQ(config.compare(at, key.size() + 5, key + "5000\n"), 0);
-  {
-    std::ofstream out(dir + "/localizer.yaml");
-    out << config;
-  }
+  // The shipped config at 5000 particles and every beam, as slamer-bench writes its own.
+  const std::string robot = std::string(SLAMER_SOURCE_DIR) + "/config/robots/cmu_wean.yaml";
+  write_text_file(dir + "/localizer.yaml",
+                  bench_localizer_config(std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml",
+                                         {5000, 1, dir + "/map/map.yaml", robot}));
   int home = 0;
   std::string ends;
   for (int seed = 1; seed <= 3; ++seed) {
     const std::string run = dir + "/run" + std::to_string(seed) + ".lcm";
     test::ChildProcess localizer(
         test::binary_path("slamer-localizer"),
-        {"--config", dir + "/localizer.yaml", "--map", dir + "/map/map.yaml", "--robot",
-         std::string(SLAMER_SOURCE_DIR) + "/config/robots/cmu_wean.yaml", "--mode", "lfm", "--seed",
-         std::to_string(seed), "--global", "--replay", dir + "/log1.lcm", "--out", run});
+        {"--config", dir + "/localizer.yaml", "--map", dir + "/map/map.yaml", "--robot", robot, "--mode", "lfm",
+         "--seed", std::to_string(seed), "--global", "--replay", dir + "/log1.lcm", "--out", run});
     ASSERT_EQ(localizer.wait(120), 0) << localizer.stderr_text();
-    const pose_estimate_t end = last_pose(run);
-    const double off = std::hypot(end.x - kHomeX, end.y - kHomeY);
+    const std::vector<PoseReport> poses = read_pose_reports(run, "POSE");
+    ASSERT_FALSE(poses.empty()) << run;
+    const double off = std::hypot(poses.back().pose.x - kHomeX, poses.back().pose.y - kHomeY);
     home += off < 0.5 ? 1 : 0;
     ends += " " + std::to_string(off);
   }
