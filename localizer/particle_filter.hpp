@@ -144,7 +144,8 @@ class ParticleFilter {
   // `n` draws from `set` (normalized) by systematic resampling, weights uniform.
   std::vector<Particle> resampled(const std::vector<Particle>& set, std::size_t n, std::mt19937& rng);
   void inject(const ScanPoints& points, UpdateResult* result);
-  // The best `keep` global proposals for the scan, each climbed to where it fits best nearby.
+  // The best `keep` global proposals for the scan, each climbed to where it fits best nearby
+  // (none when keep < 1, with no candidates, or where the map has no free space).
   std::vector<Pose2> climbed_proposals(const ScanPoints& points, int keep);
   // Keeping places after the search: a few climbed proposals join, margin
   // behind the best place, so a place the search missed can still become a

@@ -204,6 +204,9 @@ void ParticleFilter::update_fit(double fit, const PoseEstimate& e, int64_t utime
 }
 
 std::vector<Pose2> ParticleFilter::climbed_proposals(const ScanPoints& points, int keep) {
+  if (keep < 1 || options_.recovery.candidates < 1 || proposals_->empty()) {
+    return {};
+  }
   std::vector<Pose2> poses =
       proposals_->propose(field_, points, mount_, options_.recovery.candidates, keep, kProposalBeams, rng_);
   // Each to where the scan fits best near it: a random pose is some way off
@@ -218,9 +221,6 @@ std::vector<Pose2> ParticleFilter::climbed_proposals(const ScanPoints& points, i
 
 void ParticleFilter::inject(const ScanPoints& points, UpdateResult* result) {
   const int keep = static_cast<int>(options_.recovery.fraction * static_cast<double>(particles_.size()));
-  if (keep < 1 || options_.recovery.candidates < 1 || proposals_->empty()) {
-    return;
-  }
   const std::vector<Pose2> poses = climbed_proposals(points, keep);
   replace_least_likely(poses);
   result->injected = static_cast<int>(poses.size());
@@ -229,7 +229,8 @@ void ParticleFilter::inject(const ScanPoints& points, UpdateResult* result) {
 void ParticleFilter::propose_late(const ScanPoints& points, UpdateResult* result) {
   const int keep = static_cast<int>(options_.recovery.late_proposals * options_.recovery.fraction *
                                     static_cast<double>(particles_.size()));
-  if (keep < 1 || options_.recovery.candidates < 1 || proposals_->empty() || particles_.empty()) {
+  const std::vector<Pose2> poses = climbed_proposals(points, keep);
+  if (poses.empty()) {
     return;
   }
   // The search ends once one place fits and is compact, which on Wean log 3
@@ -238,7 +239,6 @@ void ParticleFilter::propose_late(const ScanPoints& points, UpdateResult* result
   // look-alike 14.5 m west was left alone and said OK. Margin behind the
   // best, a late place is kept only if it fits the scans better from then on.
   const double best = places_of(particles_, place_options()).front().log_weight;
-  const std::vector<Pose2> poses = climbed_proposals(points, keep);
   replace_least_likely(poses, best - options_.recovery.rival_margin);
   result->injected = static_cast<int>(poses.size());
 }
