@@ -4,6 +4,7 @@
 // slamer-carmen2lcm, slamer-mapgen and slamer-bench with the real localizer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -190,6 +191,57 @@ TEST(DatasetTools, ImportMapAndBenchASyntheticCorrectedLog) {
   EXPECT_EQ(alone.wait(60), 2);
   EXPECT_NE(alone.stderr_text().find("--agree takes a distance > 0 [m] and two LOGs or more"), std::string::npos)
       << alone.stderr_text();
+
+  // Started by global localization: right within the first seconds, never OK while more than
+  // 0.5 m off, OK by the end (late: only the wall stub tells the room from its half-turned twin,
+  // so the status says UNCERTAIN, another place fits about as well, for most of the 15 s).
+  test::ChildProcess global(
+      test::binary_path("slamer-bench"),
+      {"--carmen", log, "--particles", "1000", "--beams", "60", "--seed", "2", "--global", "--out", dir + "/global",
+       "--localizer-config", std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml"});
+  ASSERT_EQ(global.wait(120), 0) << global.stderr_text();
+  const auto found = nlohmann::json::parse(test::read_file(dir + "/global/summary.json"));
+  EXPECT_EQ(found["start"].get<std::string>(), "global localization");
+  EXPECT_NE(found["localizer_command"].get<std::string>().find(" --global "), std::string::npos);
+  EXPECT_EQ(found["localizer_command"].get<std::string>().find("--initial-pose"), std::string::npos);
+  ASSERT_TRUE(found["right_from"]["scan"].is_number()) << found.dump();
+  EXPECT_LT(found["right_from"]["scan"].get<int>(), 30) << found.dump();
+  ASSERT_TRUE(found["right_from"]["ok_scan"].is_number()) << found.dump();
+  const std::string global_poses = test::read_file(dir + "/global/poses.txt");
+  EXPECT_EQ(global_poses.substr(global_poses.size() - 4), " OK\n");
+  EXPECT_EQ(found["status_vs_error"]["OK"]["error_above_0.5m"].get<int>(), 0) << found.dump();
+  EXPECT_NE(global.stderr_text().find("global localization: within 0.5 m to the end from scan"), std::string::npos)
+      << global.stderr_text();
+
+  // Kidnapped: carried 5.5 m and 90 deg unseen at scan 40 (4.0 s), 50 scans left out; the status
+  // flags the far scans (the remaining 6 s are too short to relocalize in this room and its twin).
+  test::ChildProcess kidnap(
+      test::binary_path("slamer-bench"),
+      {"--carmen", log, "--particles", "300", "--beams", "60", "--seed", "2", "--kidnap", "40", "90", "--out",
+       dir + "/kidnap", "--localizer-config", std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml"});
+  ASSERT_EQ(kidnap.wait(120), 0) << kidnap.stderr_text();
+  const auto carried = nlohmann::json::parse(test::read_file(dir + "/kidnap/summary.json"));
+  EXPECT_EQ(carried["kidnap"]["from_scan"].get<int>(), 40);
+  EXPECT_EQ(carried["kidnap"]["to_scan"].get<int>(), 90);
+  EXPECT_EQ(carried["scans"].get<int>(), scans - 50);
+  const std::string carried_poses = test::read_file(dir + "/kidnap/poses.txt");
+  EXPECT_EQ(std::count(carried_poses.begin(), carried_poses.end(), '\n'), scans - 50);
+  EXPECT_GT(carried["fraction_lost"].get<double>(), 0.3);
+  EXPECT_GT(carried["status_honesty"]["far_scans_after_2s"].get<int>(), 20);
+  EXPECT_GE(carried["status_honesty"]["far_flagged_fraction"].get<double>(), 0.9);
+  EXPECT_NE(kidnap.stderr_text().find("kidnap: scans 40-89 left out; at scan 40 (4.0 s into the run) the robot was "
+                                      "carried 5.5 m and 90 deg unseen"),
+            std::string::npos)
+      << kidnap.stderr_text();
+  EXPECT_NE(kidnap.stderr_text().find("after the kidnap: within 0.5 m"), std::string::npos) << kidnap.stderr_text();
+  test::ChildProcess bad_kidnap(test::binary_path("slamer-bench"),
+                                {"--carmen", log, "--kidnap", "90", "40", "--out", dir + "/bad"});
+  EXPECT_EQ(bad_kidnap.wait(60), 2);
+  EXPECT_NE(bad_kidnap.stderr_text().find("--kidnap FROM TO needs scan numbers 0 < FROM < TO < 150"), std::string::npos)
+      << bad_kidnap.stderr_text();
+  test::ChildProcess half_scan(test::binary_path("slamer-bench"),
+                               {"--carmen", log, "--kidnap", "40.5", "90", "--out", dir + "/bad"});
+  EXPECT_EQ(half_scan.wait(60), 2);
   std::filesystem::remove_all(dir);
 }
 

@@ -2,12 +2,15 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
 #include "common/config/config_reader.hpp"
+#include "common/process/command_line.hpp"
 #include "common/process/decode.hpp"
 #include "common/process/event_log.hpp"
 #include "slamer/pose_estimate_t.hpp"
@@ -75,6 +78,93 @@ ImportedLog first_scan_only(const ImportedLog& log) {
   }
   first.corrected = log.corrected;
   return first;
+}
+
+ImportedLog kidnapped(const ImportedLog& log, std::size_t from, std::size_t to) {
+  const std::size_t n = log.scans.size();
+  if (!(0 < from && from < to && to < n) || log.scan_odometry.size() != n || log.reference.size() != n) {
+    throw std::invalid_argument("a kidnap needs 0 < FROM < TO < " + std::to_string(n) +
+                                " (the scans) and a corrected log");
+  }
+  const int64_t gap_start = log.scans[from].utime;
+  const int64_t gap_end = log.scans[to].utime;
+  const int64_t shift = gap_end - gap_start;
+  // Odometry after the carry continues from where it stood at scan `from`.
+  const Pose2 reanchor = compose(log.scan_odometry[from], inverse(log.scan_odometry[to]));
+  ImportedLog out = log;
+  out.scans.clear();
+  out.reference.clear();
+  out.scan_odometry.clear();
+  out.odometry.clear();
+  out.ticks.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k >= from && k < to) {
+      continue;
+    }
+    LaserScan scan = log.scans[k];
+    if (k >= to) {
+      scan.utime -= shift;
+      scan.seq -= static_cast<int64_t>(to - from);
+    }
+    out.scans.push_back(std::move(scan));
+    out.reference.push_back(log.reference[k]);
+    out.scan_odometry.push_back(k >= to ? compose(reanchor, log.scan_odometry[k]) : log.scan_odometry[k]);
+  }
+  for (const TimedPose& p : log.odometry) {
+    if (p.utime < gap_start) {
+      out.odometry.push_back(p);
+    } else if (p.utime >= gap_end) {
+      out.odometry.push_back({p.utime - shift, compose(reanchor, p.pose), p.v, p.omega});
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> bench_localizer_args(const BenchLocalizerRun& run, const std::string& in,
+                                              const std::string& out) {
+  std::vector<std::string> args{"--config", run.config, "--map", run.map, "--robot", run.robot};
+  if (run.start) {
+    args.push_back("--initial-pose");
+    for (const double v : {run.start->x, run.start->y, run.start->theta}) {
+      args.push_back(std::to_string(v));
+    }
+  } else {
+    args.push_back("--global");
+  }
+  args.insert(args.end(), {"--mode", run.mode, "--seed", run.seed, "--replay", in, "--out", out});
+  return args;
+}
+
+std::pair<int64_t, int64_t> kidnap_scans(const std::vector<double>& values, std::size_t scans) {
+  if (values.size() != 2 || values[0] < 1 || values[1] <= values[0] || values[1] >= static_cast<double>(scans) ||
+      values[0] != std::floor(values[0]) || values[1] != std::floor(values[1])) {
+    throw CommandLineError("--kidnap FROM TO needs scan numbers 0 < FROM < TO < " + std::to_string(scans));
+  }
+  return {static_cast<int64_t>(values[0]), static_cast<int64_t>(values[1])};
+}
+
+std::vector<BenchPose> poses_per_scan(const ImportedLog& log, const std::vector<PoseReport>& reports,
+                                      const Pose2& initial_pose, int64_t* missing) {
+  std::vector<int64_t> utimes;
+  std::vector<int64_t> log_utimes;
+  for (const LaserScan& scan : log.scans) {
+    utimes.push_back(scan.utime);
+    log_utimes.push_back(scan.sensor_utime);
+  }
+  return poses_per_scan(utimes, log_utimes, reports, initial_pose, missing);
+}
+
+std::string describe_kidnap(const ImportedLog& whole, const ImportedLog& kidnapped_log, std::size_t from) {
+  const std::size_t to = from + whole.scans.size() - kidnapped_log.scans.size();
+  const Pose2 moved = between(whole.reference.at(from), whole.reference.at(to));
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "kidnap: scans %zu-%zu left out; at scan %zu (%.1f s into the run) the robot was carried %.1f m and "
+                "%.0f deg unseen",
+                from, to - 1, from,
+                static_cast<double>(kidnapped_log.scans.at(from).utime - kidnapped_log.scans.front().utime) * 1e-6,
+                std::hypot(moved.x, moved.y), std::abs(moved.theta) * 180.0 / std::numbers::pi);
+  return text;
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

@@ -2,6 +2,8 @@
 // map, offline localization with the real slamer-localizer, scoring.
 #include <chrono>
 #include <filesystem>
+#include <optional>
+#include <utility>
 
 #include "common/process/log.hpp"
 #include "common/process/process_main.hpp"
@@ -23,21 +25,29 @@ int bench(const CommandLine& cli) {
   }
   ImportOptions import;
   import.corrected = ImportOptions::Corrected::kYes;
-  const ImportedLog log = import_dataset(log_path, import);
-  for (const std::string& error : log.errors) {
+  const ImportedLog whole = import_dataset(log_path, import);
+  for (const std::string& error : whole.errors) {
     log_line("slamer-bench", LogLevel::kWarning, "malformed line skipped: " + error);
   }
-  if (log.scans.empty() || log.reference.size() != log.scans.size()) {
+  if (whole.scans.empty() || whole.reference.size() != whole.scans.size()) {
     throw std::runtime_error("no scans with corrected poses in " + log_path);
   }
-  log_line("slamer-bench", LogLevel::kInfo, log_path + ": " + describe_import(log));
+  log_line("slamer-bench", LogLevel::kInfo, log_path + ": " + describe_import(whole));
+  const std::optional<std::pair<int64_t, int64_t>> carry =
+      cli.has("kidnap") ? std::optional(kidnap_scans(cli.get_doubles("kidnap"), whole.scans.size())) : std::nullopt;
+  // The map from every scan; the localizer sees the kidnapped log.
+  const ImportedLog log =
+      carry ? kidnapped(whole, static_cast<std::size_t>(carry->first), static_cast<std::size_t>(carry->second)) : whole;
+  if (carry) {
+    log_line("slamer-bench", LogLevel::kInfo, describe_kidnap(whole, log, static_cast<std::size_t>(carry->first)));
+  }
   std::filesystem::create_directories(dir);
   write_dataset_lcm(log, (dir / "input.lcm").string());
   const Pose2 mount = log.laser_mount.value_or(Pose2{});
   MapgenOptions map_options;
   map_options.resolution = 0.05;
   map_options.laser_mount = mount;
-  write_occupancy_map(build_occupancy(log.scans, log.reference, map_options), map_options, dir.string());
+  write_occupancy_map(build_occupancy(whole.scans, whole.reference, map_options), map_options, dir.string());
   write_text_file((dir / "robot.yaml").string(), dataset_robot_yaml(log_path, log.scans.front(), mount));
   const int beam_step = beams == "all" ? 1 : std::max(1, static_cast<int>(log.scans.front().ranges.size() / 60));
   BenchConfigChanges changes{static_cast<int>(particles), beam_step, (dir / "map.yaml").string(),
@@ -45,23 +55,24 @@ int bench(const CommandLine& cli) {
   write_text_file((dir / "localizer.yaml").string(), bench_localizer_config(cli.get("localizer-config"), changes));
 
   const Pose2 start = log.reference.front();
-  std::string localizer = cli.get("localizer");
-  if (localizer.empty()) {
-    localizer = (std::filesystem::read_symlink("/proc/self/exe").parent_path() / "slamer-localizer").string();
-  }
-  const auto args_for = [&](const std::string& in, const std::string& out) {
-    std::vector<std::string> args{
-        "--config",      (dir / "localizer.yaml").string(), "--map", changes.map, "--robot", changes.robot,
-        "--initial-pose"};
-    for (const double v : {start.x, start.y, start.theta}) {
-      args.push_back(std::to_string(v));
-    }
-    args.insert(args.end(), {"--mode", cli.get("mode"), "--seed", cli.get("seed"), "--replay", in, "--out", out});
-    return args;
-  };
-  const auto args = args_for((dir / "input.lcm").string(), (dir / "localized.lcm").string());
-  BenchRunInfo info{
-      log_path, cli.get("mode"), static_cast<int>(particles), beams, cli.get_int("seed"), 0.0, 0.0, localizer, 0.0};
+  const bool global = cli.has("global");
+  const std::string localizer =
+      cli.get("localizer").empty()
+          ? (std::filesystem::read_symlink("/proc/self/exe").parent_path() / "slamer-localizer").string()
+          : cli.get("localizer");
+  const BenchLocalizerRun run_setup{
+      (dir / "localizer.yaml").string(),           changes.map, changes.robot, cli.get("mode"), cli.get("seed"),
+      global ? std::nullopt : std::optional(start)};
+  const auto args = bench_localizer_args(run_setup, (dir / "input.lcm").string(), (dir / "localized.lcm").string());
+  BenchRunInfo info;
+  info.log = log_path;
+  info.mode = cli.get("mode");
+  info.particles = static_cast<int>(particles);
+  info.beams = beams;
+  info.seed = cli.get_int("seed");
+  info.global = global;
+  info.kidnap = carry;
+  info.command = localizer;
   for (const std::string& a : args) {
     info.command += " " + a;
   }
@@ -72,23 +83,16 @@ int bench(const CommandLine& cli) {
   info.cpu_seconds = run.cpu_seconds;
   // What starting up costs (map loading, field building): the same run on the first scan alone.
   write_dataset_lcm(first_scan_only(log), (dir / "startup.lcm").string());
-  const ProgramRun startup =
-      run_program(localizer, args_for((dir / "startup.lcm").string(), (dir / "startup_out.lcm").string()));
+  const ProgramRun startup = run_program(
+      localizer, bench_localizer_args(run_setup, (dir / "startup.lcm").string(), (dir / "startup_out.lcm").string()));
   info.startup_cpu_seconds = startup.cpu_seconds;
   if (run.exit_code != 0 || startup.exit_code != 0) {
     throw std::runtime_error(localizer + " failed with exit code " + std::to_string(run.exit_code));
   }
 
-  std::vector<int64_t> utimes;
-  std::vector<int64_t> log_utimes;
-  for (const LaserScan& scan : log.scans) {
-    utimes.push_back(scan.utime);
-    log_utimes.push_back(scan.sensor_utime);
-  }
   int64_t missing = 0;
-  const std::vector<BenchPose> poses =
-      poses_per_scan(utimes, log_utimes, read_pose_reports((dir / "localized.lcm").string(), cli.get("pose-channel")),
-                     start, &missing);
+  const std::vector<BenchPose> poses = poses_per_scan(
+      log, read_pose_reports((dir / "localized.lcm").string(), cli.get("pose-channel")), start, &missing);
   const BenchScore score = score_poses(poses, log.reference);
   write_text_file((dir / "poses.txt").string(), format_poses(poses));
   write_text_file((dir / "summary.json").string(), summary_json(score, info));
@@ -97,18 +101,11 @@ int bench(const CommandLine& cli) {
     log_line("slamer-bench", LogLevel::kWarning,
              std::to_string(missing) + " scans had no POSE: poses.txt repeats the previous pose for them");
   }
-  char text[400];
-  std::snprintf(text, sizeof text,
-                "%lld scans: position error mean %.1f cm (std %.1f, max %.1f), heading %.2f deg, lost %.1f %%, "
-                "status: %.1f %% of %lld far flagged after 2 s, %.2f %% of close LOST, "
-                "%.3f ms per scan (CPU, start-up excluded); %s",
-                static_cast<long long>(score.scans), score.position.mean * 100, score.position.std * 100,
-                score.position.max * 100, score.heading.mean * 180 / 3.14159265358979, score.fraction_lost * 100,
-                score.honesty.far_flagged_fraction() * 100, static_cast<long long>(score.honesty.far_after_grace()),
-                score.honesty.close_lost_fraction() * 100,
-                std::max(0.0, info.cpu_seconds - info.startup_cpu_seconds) / std::max<double>(1, score.scans - 1) * 1e3,
-                (dir / "summary.json").c_str());
-  log_line("slamer-bench", LogLevel::kInfo, text);
+  log_line("slamer-bench", LogLevel::kInfo, describe_score(score, info) + "; " + (dir / "summary.json").string());
+  if (global || carry) {
+    log_line("slamer-bench", LogLevel::kInfo,
+             std::string(global ? "global localization" : "after the kidnap") + ": " + describe_right_from(score));
+  }
   return 0;
 }
 
@@ -118,12 +115,12 @@ int bench(const CommandLine& cli) {
 int main(int argc, char** argv) {
   return slamer::process_main(
       argc, argv, "slamer-bench",
-      "Runs the real-log protocol on a *-corrected CARMEN log: imports it (slamer-carmen2lcm's rules,\n"
-      "raw odometry rebuilt from the re-anchored ODOM lines) into OUT/input.lcm, builds a 5 cm map from\n"
-      "the scans at the corrected poses (OUT/map.yaml), runs slamer-localizer offline from the first\n"
-      "corrected pose, and scores every scan against the corrected poses (GMapping's estimate, not\n"
-      "ground truth). Writes OUT/poses.txt (`t x y theta status` per scan, t the log's time; a scan\n"
-      "without a POSE repeats the previous pose), OUT/summary.json and OUT/errors.png.",
+      "Runs the real-log protocol on a *-corrected CARMEN log: import (raw odometry rebuilt from the\n"
+      "re-anchored ODOM lines) into OUT/input.lcm, a 5 cm map (OUT/map.yaml), slamer-localizer offline\n"
+      "from the first corrected pose (or --global), then scoring against the corrected poses (GMapping's,\n"
+      "not ground truth): OUT/poses.txt (`t x y theta status` per scan, t the log's time; a scan without\n"
+      "a POSE repeats the previous pose), OUT/summary.json, OUT/errors.png. --kidnap FROM TO leaves\n"
+      "scans FROM to TO - 1 out and hides the carry from the odometry; the outputs count the scans kept.",
       [](slamer::CommandLine& cli) {
         cli.add_option("carmen", "LOG", "*-corrected CARMEN log (.gz or plain)");
         cli.add_option("out", "DIR", "output folder");
@@ -131,6 +128,10 @@ int main(int argc, char** argv) {
         cli.add_option("beams", "all|60", "every beam, or about 60 (the localizer's beam_step)", "all");
         cli.add_option("mode", "MODE", "lfm, slfm or slamer", "lfm");
         cli.add_option("seed", "S", "localizer seed", "1");
+        cli.add_flag("global", "start with global localization instead of at the first corrected pose");
+        cli.add_multi_option("kidnap", 2, "FROM TO",
+                             "carry the robot unseen from scan FROM to scan TO (leaving out the scans between; "
+                             "the map keeps them)");
         cli.add_option("localizer-config", "FILE", "base localizer config", "config/localizer.yaml");
         cli.add_option("localizer", "PROGRAM", "slamer-localizer to run (default: the one beside this program)");
         cli.add_option("pose-channel", "NAME", "the localizer's pose channel", "POSE");

@@ -15,6 +15,9 @@ namespace {
 // Issue 9's bands, the same as the honesty count's.
 constexpr double kLost = StatusHonesty::kFar;
 constexpr double kClose = StatusHonesty::kClose;
+// Off by at most this for under 2 s after being right: a blip (of the reference or a scan match),
+// not another place.
+constexpr double kBlip = 1.0;  // [m]
 
 ErrorStats stats_of(const std::vector<double>& values) {
   ErrorStats s;
@@ -61,13 +64,14 @@ std::vector<BenchPose> poses_per_scan(const std::vector<int64_t>& scan_utimes, c
   std::vector<PoseReport> sorted = reports;
   std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.utime < b.utime; });
   std::vector<BenchPose> poses;
-  BenchPose previous{0.0, initial_pose, BenchStatus::kInitializing, false};
+  BenchPose previous{0.0, initial_pose, BenchStatus::kInitializing, false, 0};
   *missing = 0;
   for (std::size_t k = 0; k < scan_utimes.size(); ++k) {
     const auto it = std::lower_bound(sorted.begin(), sorted.end(), scan_utimes[k],
                                      [](const PoseReport& r, int64_t t) { return r.utime < t; });
     BenchPose pose = previous;
     pose.t = static_cast<double>(k < log_utimes.size() ? log_utimes[k] : scan_utimes[k]) * 1e-6;
+    pose.utime = scan_utimes[k];
     if (it != sorted.end() && it->utime == scan_utimes[k]) {
       pose.pose = it->pose;
       pose.status = it->status;
@@ -98,11 +102,44 @@ BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Po
     score.scans_without_pose += poses[k].has_report ? 0 : 1;
     const int column = e < kClose ? 0 : (e <= kLost ? 1 : 2);
     ++score.confusion[static_cast<std::size_t>(poses[k].status)][static_cast<std::size_t>(column)];
-    score.honesty.add(poses[k].t, e, poses[k].status);
+    // By utime: csail's own times stand still, a kidnapped log's jump over the carry.
+    score.honesty.add(static_cast<double>(poses[k].utime) * 1e-6, e, poses[k].status);
   }
   score.position = stats_of(score.position_errors);
   score.heading = stats_of(headings);
   score.fraction_lost = poses.empty() ? 0.0 : static_cast<double>(lost) / static_cast<double>(poses.size());
+  // Back from the end: stop at a stretch off by more than 0.5 m that is not a blip (it lasted the
+  // honesty grace, went more than 1 m off, or began at the first scan: a global localization's search).
+  std::size_t right = 0;
+  for (std::size_t k = poses.size(); k > 0; --k) {
+    if (score.position_errors[k - 1] <= kLost) {
+      continue;
+    }
+    std::size_t first = k - 1;
+    double worst = score.position_errors[first];
+    while (first > 0 && score.position_errors[first - 1] > kLost) {
+      --first;
+      worst = std::max(worst, score.position_errors[first]);
+    }
+    if (k == poses.size() || first == 0 || worst > kBlip ||
+        static_cast<double>(poses[k].utime - poses[first].utime) * 1e-6 >= StatusHonesty::kGraceSeconds) {
+      right = k;
+      break;
+    }
+    score.far_after_right += static_cast<int64_t>(k - first);
+    k = first + 1;
+  }
+  if (right < poses.size()) {
+    score.right_from = static_cast<int64_t>(right);
+    score.right_from_seconds = static_cast<double>(poses[right].utime - poses.front().utime) * 1e-6;
+    for (std::size_t k = right; k < poses.size(); ++k) {
+      if (poses[k].status == BenchStatus::kOk) {
+        score.ok_from = static_cast<int64_t>(k);
+        score.ok_from_seconds = static_cast<double>(poses[k].utime - poses.front().utime) * 1e-6;
+        break;
+      }
+    }
+  }
   return score;
 }
 
@@ -117,6 +154,35 @@ std::string format_poses(const std::vector<BenchPose>& poses) {
   return text;
 }
 
+std::string describe_right_from(const BenchScore& score) {
+  const auto at = [](const std::optional<int64_t>& scan, double seconds) {
+    char when[64] = "never";
+    if (scan) {
+      std::snprintf(when, sizeof when, "scan %lld (%.1f s)", static_cast<long long>(*scan), seconds);
+    }
+    return std::string(when);
+  };
+  return "within 0.5 m to the end from " + at(score.right_from, score.right_from_seconds) + " (then " +
+         std::to_string(score.far_after_right) + " scans in blips: <= 1 m off, < 2 s), OK from " +
+         at(score.ok_from, score.ok_from_seconds) + "; OK while > 0.5 m off in " +
+         std::to_string(score.confusion[1][2]) + " scans";
+}
+
+std::string describe_score(const BenchScore& score, const BenchRunInfo& info) {
+  char text[400];
+  std::snprintf(
+      text, sizeof text,
+      "%lld scans: position error mean %.1f cm (std %.1f, max %.1f), heading %.2f deg, lost %.1f %%, "
+      "status: %.1f %% of %lld far flagged after 2 s, %.2f %% of close LOST, "
+      "%.3f ms per scan (CPU, start-up excluded)",
+      static_cast<long long>(score.scans), score.position.mean * 100, score.position.std * 100,
+      score.position.max * 100, score.heading.mean * 180 / 3.14159265358979, score.fraction_lost * 100,
+      score.honesty.far_flagged_fraction() * 100, static_cast<long long>(score.honesty.far_after_grace()),
+      score.honesty.close_lost_fraction() * 100,
+      std::max(0.0, info.cpu_seconds - info.startup_cpu_seconds) / std::max<double>(1, score.scans - 1) * 1e3);
+  return text;
+}
+
 std::string summary_json(const BenchScore& score, const BenchRunInfo& info) {
   nlohmann::json confusion;
   for (int s = 0; s < 4; ++s) {
@@ -125,6 +191,9 @@ std::string summary_json(const BenchScore& score, const BenchRunInfo& info) {
         {"error_below_0.2m", row[0]}, {"error_0.2_to_0.5m", row[1]}, {"error_above_0.5m", row[2]}};
   }
   const double scans = static_cast<double>(std::max<int64_t>(score.scans, 1));
+  const auto scan_or_null = [](const std::optional<int64_t>& scan) {
+    return scan ? nlohmann::json(*scan) : nlohmann::json(nullptr);
+  };
   const nlohmann::json json = {
       {"log", info.log},
       {"reference", "the log's corrected poses (GMapping's estimate, not ground truth)"},
@@ -132,12 +201,30 @@ std::string summary_json(const BenchScore& score, const BenchRunInfo& info) {
       {"particles", info.particles},
       {"beams", info.beams},
       {"seed", info.seed},
+      {"start", info.global ? "global localization" : "the first reference pose"},
+      {"kidnap", info.kidnap ? nlohmann::json{{"from_scan", info.kidnap->first},
+                                              {"to_scan", info.kidnap->second},
+                                              {"note",
+                                               "the robot carried unseen: the log's scans from_scan to to_scan - 1 "
+                                               "left out (the map keeps them); scans, poses.txt and the scores "
+                                               "count the scans kept"}}
+                             : nlohmann::json(nullptr)},
       {"scans", score.scans},
       {"scans_without_pose", score.scans_without_pose},
       {"position_error_m", to_json(score.position, 1.0)},
       {"heading_error_deg", to_json(score.heading, 180.0 / 3.14159265358979323846)},
       {"fraction_lost", score.fraction_lost},
       {"lost_threshold_m", kLost},
+      {"right_from",
+       {{"scan", scan_or_null(score.right_from)},
+        {"seconds", score.right_from_seconds},
+        {"ok_scan", scan_or_null(score.ok_from)},
+        {"ok_seconds", score.ok_from_seconds},
+        {"far_scans_after", score.far_after_right},
+        {"note",
+         "the first scan (0-based) from which the position error is <= 0.5 m to the end but for blips (off by "
+         "at most 1 m for under 2 s; far_scans_after counts their scans), and the first scan from there that "
+         "says OK; null: never; seconds from the first scan"}}},
       {"time_per_scan_ms",
        {{"wall", info.wall_seconds / scans * 1e3},
         {"cpu", info.cpu_seconds / scans * 1e3},

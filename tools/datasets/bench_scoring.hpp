@@ -4,12 +4,15 @@
 // line per scan, t the log's own time), summary.json (position / heading
 // error mean, std, max; fraction lost = error > 0.5 m; time per scan; the
 // status-versus-error confusion table) and errors.png (error and status over
-// time).
+// time). Started by global localization (`--global`), the scoring also says
+// from which scan the estimate is right to the end and from which it says OK.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/geometry/se2.hpp"
@@ -31,6 +34,7 @@ struct BenchPose {
   Pose2 pose;
   BenchStatus status = BenchStatus::kInitializing;
   bool has_report = true;  // false: no POSE for this scan, the previous pose repeated
+  int64_t utime = 0;       // the scan's utime as sent (strictly increasing; the log's time where it has one)
 };
 
 // One pose per scan (scan_utimes strictly increasing): the POSE with the
@@ -54,7 +58,18 @@ struct BenchScore {
   double fraction_lost = 0.0;
   // rows: status (INITIALIZING, OK, UNCERTAIN, LOST); columns: error < 0.2 m, 0.2-0.5 m, > 0.5 m.
   std::array<std::array<int64_t, 3>, 4> confusion{};
-  StatusHonesty honesty;                // issue 9's honest-status bars
+  StatusHonesty honesty;  // issue 9's honest-status bars
+  // The first scan from which the position error stays <= 0.5 m to the end but for blips, and the
+  // first scan from there that says OK; none: the last scan is off. A blip is off by at most 1 m for
+  // under 2 s (the honesty count's grace): a reference or scan-match blip, not a wrong place
+  // (far_after_right counts their scans); a stretch off from the first scan is a global
+  // localization's search, however short. Seconds from the first scan by utime (csail's log has no
+  // time base: its scans go at a nominal 10 Hz, dataset_import.hpp).
+  std::optional<int64_t> right_from;
+  double right_from_seconds = 0.0;
+  int64_t far_after_right = 0;
+  std::optional<int64_t> ok_from;
+  double ok_from_seconds = 0.0;
   std::vector<double> position_errors;  // per scan [m]
 };
 
@@ -62,6 +77,10 @@ struct BenchScore {
 BenchScore score_poses(const std::vector<BenchPose>& poses, const std::vector<Pose2>& reference);
 
 std::string format_poses(const std::vector<BenchPose>& poses);
+
+// "within 0.5 m to the end from scan N (T s) (then B scans in blips ...), OK from scan M (T s);
+// OK while > 0.5 m off in K scans" ("never" where there is no such scan).
+std::string describe_right_from(const BenchScore& score);
 
 struct BenchRunInfo {
   std::string log;
@@ -73,8 +92,14 @@ struct BenchRunInfo {
   double cpu_seconds = 0.0;          // its user + system time
   std::string command;               // the localizer command line
   double startup_cpu_seconds = 0.0;  // the same on the first scan alone (loading the map, building fields)
+  bool global = false;               // started by global localization, not at the first reference pose
+  std::optional<std::pair<int64_t, int64_t>> kidnap;  // scans [first, second) of the log left out (kidnapped())
 };
 std::string summary_json(const BenchScore& score, const BenchRunInfo& info);
+
+// "N scans: position error mean ... cm (std, max), heading ... deg, lost ... %, status: ... % of K far
+// flagged after 2 s, ... % of close LOST, ... ms per scan (CPU, start-up excluded)".
+std::string describe_score(const BenchScore& score, const BenchRunInfo& info);
 
 // Position error over time with each scan's status as a coloured strip;
 // throws std::runtime_error if the PNG cannot be written.
