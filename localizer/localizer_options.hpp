@@ -156,7 +156,7 @@ struct StatusOptions {
   int lost_after = 20;
   double fit_distance = 0.1;   // [m]
   double fit_expected = 0.9;   // typical fit at a correct pose: motion noise as configured at or above it
-  double fit_uncertain = 0.5;  // smoothed fit below this: UNCERTAIN
+  double fit_uncertain = 0.5;  // smoothed fit below this: UNCERTAIN; the slow fit below it: search too
   double fit_lost = 0.3;       // below this for lost_after scans: LOST (until above fit_uncertain) and recovery
   // A global search (after LOST, or on demand) ends only when the smoothed fit
   // is this high: a wrong place of a building that looks alike fits about as

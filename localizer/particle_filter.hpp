@@ -226,7 +226,8 @@ class ParticleFilter {
   int low_fit_scans_ = 0;
   bool lost_ = false;
   bool global_ = false;  // global localization under way
-  // Since LOST, until the scans fit as at a correct pose (status.fit_confirm):
+  // Since LOST or the slow fit fell below status.fit_uncertain, until the scans
+  // fit as at a correct pose (status.fit_confirm):
   // proposals go on and the status stays UNCERTAIN, so a look-alike place the
   // recovery found first is not taken for the right one.
   bool searching_ = false;
