@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "test/support/child_process.hpp"
+#include "test/support/temp_dir.hpp"
 #include "tools/datasets/bench_files.hpp"
 
 namespace slamer {
@@ -32,9 +33,8 @@ TEST(WeanGlobalLocalization, Log1EndsAtTheHomeSpotInTwoOfThreeSeeds) {
   if (!std::filesystem::exists(data + "robotdata1.log.gz")) {
     GTEST_SKIP() << "../shared/datasets/cmu_wean_16831 is absent";
   }
-  const std::string dir = (std::filesystem::temp_directory_path() / "slamer_wean_global_test").string();
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const test::TempDir temp("slamer_wean_global_test");
+  const std::string& dir = temp.path();
   test::ChildProcess mapgen(test::binary_path("slamer-mapgen"), {"--wean", data + "wean.dat.gz", dir + "/map"});
   ASSERT_EQ(mapgen.wait(60), 0) << mapgen.stderr_text();
   test::ChildProcess convert(test::binary_path("slamer-carmen2lcm"),
@@ -64,7 +64,6 @@ TEST(WeanGlobalLocalization, Log1EndsAtTheHomeSpotInTwoOfThreeSeeds) {
   // Measured: 0.04 and 0.08 m (seeds 1, 2), 1.31 m (seed 3, never settled);
   // before the prior 31.0, 18.3 and 18.1 m.
   EXPECT_GE(home, 2) << "metres from home at the end:" << ends;
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
