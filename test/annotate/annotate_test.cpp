@@ -161,7 +161,7 @@ TEST(ObjectList, ReadsLinesPolygonsAndTheClassTable) {
   EXPECT_FALSE(list.objects[1].thickness);
   EXPECT_EQ(list.objects[1].points.size(), 3u);
   // The project's table is that of the bundled maps.
-  const SemanticMap paper = load_semantic_map(std::string(SLAMER_SOURCE_DIR) + "/config/maps/paper_indoor/map.yaml");
+  const SemanticMap paper = load_semantic_map(std::string(SLAMER_SOURCE_DIR "/config/maps/paper_indoor/map.yaml"));
   ASSERT_EQ(paper.classes.size(), project_classes().size());
   for (std::size_t c = 0; c < paper.classes.size(); ++c) {
     EXPECT_EQ(paper.classes[c].name, project_classes()[c].name);

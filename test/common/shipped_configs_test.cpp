@@ -46,7 +46,7 @@ void load_map(const std::string& path) {
 // bin/ or PATH) and every config and file it names loads with its program's loader.
 void check_launch(const std::string& path) {
   const std::vector<std::string> problems =
-      launch::check_launch_file(path, {std::string(SLAMER_BINARY_DIR) + "/bin", "/usr/bin", "/bin"});
+      launch::check_launch_file(path, {std::string(SLAMER_BINARY_DIR "/bin"), "/usr/bin", "/bin"});
   for (const std::string& problem : problems) {
     ADD_FAILURE() << problem;
   }
@@ -69,7 +69,7 @@ const std::map<std::string, std::function<void(const std::string&)>>& loaders() 
        [](const std::string& path) {
          // config/sim.yaml with the sensor channels renamed for the device emulators.
          const auto config = load_options<SimProcessConfig>(path);
-         const auto plain = load_options<SimProcessConfig>(std::string(SLAMER_SOURCE_DIR) + "/config/sim.yaml");
+         const auto plain = load_options<SimProcessConfig>(std::string(SLAMER_SOURCE_DIR "/config/sim.yaml"));
          EXPECT_EQ(config.channels.lidar, "SIM_LIDAR");
          EXPECT_EQ(config.channels.wheel_encoders, "SIM_WHEEL_ENCODERS");
          EXPECT_EQ(config.channels.odometry, "SIM_ODOMETRY");
@@ -156,7 +156,7 @@ TEST(ShippedConfigs, EveryFileLoadsWithItsProgramsLoader) {
 // the struct's must not silently differ (only the world's start may).
 TEST(ShippedConfigs, LocalizerDefaultsAreTheShippedOnes) {
   const auto shipped =
-      load_options<LocalizerProcessConfig>(std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml").localizer;
+      load_options<LocalizerProcessConfig>(std::string(SLAMER_SOURCE_DIR "/config/localizer.yaml")).localizer;
   const LocalizerOptions defaults;
   EXPECT_EQ(shipped.mode, defaults.mode);
   EXPECT_EQ(shipped.particles, defaults.particles);
@@ -176,7 +176,7 @@ TEST(ShippedConfigs, LocalizerDefaultsAreTheShippedOnes) {
 // The localizer expects the classes the shipped recognizer emits, and its
 // class_map fits the shipped map (the check slamer-localizer runs at start-up).
 TEST(ShippedConfigs, LocalizerClassesAreTheRecognizersAndTheMaps) {
-  const std::string dir = std::string(SLAMER_SOURCE_DIR) + "/config/";
+  const std::string dir = std::string(SLAMER_SOURCE_DIR "/config/");
   const auto localizer = load_options<LocalizerProcessConfig>(dir + "localizer.yaml");
   const auto recognizer = load_options<RecognizerProcessConfig>(dir + "recognizer.yaml");
   EXPECT_EQ(localizer.localizer.slamer.recognition_classes, recognizer.recognizer.classes);

@@ -20,7 +20,7 @@ namespace {
 
 TEST(AcesKidnap, CarriedUnseenTheRobotIsFoundAgainAndNeverSaysOkWhileFarOff) {
   const std::string log =
-      std::string(SLAMER_SOURCE_DIR) + "/../shared/datasets/ple_carmen_corrected/aces-corrected.log.gz";
+      std::string(SLAMER_SOURCE_DIR "/../shared/datasets/ple_carmen_corrected/aces-corrected.log.gz");
   if (!std::filesystem::exists(log)) {
     GTEST_SKIP() << "../shared/datasets/ple_carmen_corrected is absent";
   }
@@ -30,7 +30,7 @@ TEST(AcesKidnap, CarriedUnseenTheRobotIsFoundAgainAndNeverSaysOkWhileFarOff) {
     test::ChildProcess bench(
         test::binary_path("slamer-bench"),
         {"--carmen", log, "--particles", "500", "--seed", std::to_string(seed), "--kidnap", "110", "220", "--out", out,
-         "--localizer-config", std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml"});
+         "--localizer-config", std::string(SLAMER_SOURCE_DIR "/config/localizer.yaml")});
     ASSERT_EQ(bench.wait(120), 0) << bench.stderr_text();
     const auto summary = nlohmann::json::parse(test::read_file(out + "/summary.json"));
     // Measured: right again at scans 134 / 138 / 136 (63-75 s after the carry), OK from 143; 0-1

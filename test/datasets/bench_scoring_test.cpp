@@ -234,7 +234,7 @@ TEST(Settling, GroupsSayWhichRunsAgreeWhereNotAllDo) {
 }
 
 TEST(BenchFiles, LocalizerConfigKeepsEverythingElse) {
-  const std::string config = std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml";
+  const std::string config = std::string(SLAMER_SOURCE_DIR "/config/localizer.yaml");
   const std::string yaml = bench_localizer_config(config, {123, 3, "/m/map.yaml", "/r/robot.yaml"});
   EXPECT_NE(yaml.find("particles: 123"), std::string::npos);
   EXPECT_NE(yaml.find("beam_step: 3"), std::string::npos);

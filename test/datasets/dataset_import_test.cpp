@@ -98,7 +98,7 @@ TEST(DatasetImport, FrozenLogClockGetsStrictlyIncreasingUtimes) {
 // The shared logs: the rebuilt increments match the reference within noise,
 // and dead reckoning drifts away from it as real odometry does.
 TEST(DatasetImport, SharedLogsOdometryDrift) {
-  const std::string dir = std::string(SLAMER_SOURCE_DIR) + "/../shared/datasets/ple_carmen_corrected/";
+  const std::string dir = std::string(SLAMER_SOURCE_DIR "/../shared/datasets/ple_carmen_corrected/");
   if (!std::filesystem::exists(dir)) {
     GTEST_SKIP() << "../shared/datasets/ple_carmen_corrected is absent";
   }

@@ -14,7 +14,7 @@ namespace slamer {
 namespace {
 
 std::string excerpt(const std::string& name) {
-  return std::string(SLAMER_SOURCE_DIR) + "/test/datasets/excerpts/" + name;
+  return std::string(SLAMER_SOURCE_DIR "/test/datasets/excerpts/") + name;
 }
 
 TEST(DatasetRecords, RobotLaserLine) {

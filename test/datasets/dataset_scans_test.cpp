@@ -88,7 +88,7 @@ TEST(DatasetScans, FilesCountBadLines) {
 
 TEST(DatasetScans, RealDatasetsWhenPresent) {
   const std::string path =
-      std::string(SLAMER_SOURCE_DIR) + "/../shared/datasets/ple_carmen_corrected/aces-corrected.log.gz";
+      std::string(SLAMER_SOURCE_DIR "/../shared/datasets/ple_carmen_corrected/aces-corrected.log.gz");
   if (!std::filesystem::exists(path)) {
     GTEST_SKIP() << "../shared/datasets is absent";
   }

@@ -149,7 +149,7 @@ TEST(DatasetTools, ImportMapAndBenchASyntheticCorrectedLog) {
   test::ChildProcess bench(
       test::binary_path("slamer-bench"),
       {"--carmen", log, "--particles", "300", "--beams", "60", "--mode", "lfm", "--seed", "2", "--out", dir + "/bench",
-       "--localizer-config", std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml"});
+       "--localizer-config", std::string(SLAMER_SOURCE_DIR "/config/localizer.yaml")});
   ASSERT_EQ(bench.wait(120), 0) << bench.stderr_text();
   std::istringstream poses(test::read_file(dir + "/bench/poses.txt"));
   std::string line;
@@ -178,7 +178,7 @@ TEST(DatasetTools, ImportMapAndBenchASyntheticCorrectedLog) {
   test::ChildProcess other_seed(
       test::binary_path("slamer-bench"),
       {"--carmen", log, "--particles", "300", "--beams", "60", "--mode", "lfm", "--seed", "3", "--out", dir + "/bench3",
-       "--localizer-config", std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml"});
+       "--localizer-config", std::string(SLAMER_SOURCE_DIR "/config/localizer.yaml")});
   ASSERT_EQ(other_seed.wait(120), 0) << other_seed.stderr_text();
   test::ChildProcess settle(test::binary_path("slamer-settle"),
                             {"--agree", "0.5", dir + "/bench/localized.lcm", dir + "/bench3/localized.lcm"});
@@ -198,7 +198,7 @@ TEST(DatasetTools, ImportMapAndBenchASyntheticCorrectedLog) {
   test::ChildProcess global(
       test::binary_path("slamer-bench"),
       {"--carmen", log, "--particles", "1000", "--beams", "60", "--seed", "2", "--global", "--out", dir + "/global",
-       "--localizer-config", std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml"});
+       "--localizer-config", std::string(SLAMER_SOURCE_DIR "/config/localizer.yaml")});
   ASSERT_EQ(global.wait(120), 0) << global.stderr_text();
   const auto found = nlohmann::json::parse(test::read_file(dir + "/global/summary.json"));
   EXPECT_EQ(found["start"].get<std::string>(), "global localization");
@@ -218,7 +218,7 @@ TEST(DatasetTools, ImportMapAndBenchASyntheticCorrectedLog) {
   test::ChildProcess kidnap(
       test::binary_path("slamer-bench"),
       {"--carmen", log, "--particles", "300", "--beams", "60", "--seed", "2", "--kidnap", "40", "90", "--out",
-       dir + "/kidnap", "--localizer-config", std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml"});
+       dir + "/kidnap", "--localizer-config", std::string(SLAMER_SOURCE_DIR "/config/localizer.yaml")});
   ASSERT_EQ(kidnap.wait(120), 0) << kidnap.stderr_text();
   const auto carried = nlohmann::json::parse(test::read_file(dir + "/kidnap/summary.json"));
   EXPECT_EQ(carried["kidnap"]["from_scan"].get<int>(), 40);

@@ -83,7 +83,7 @@ namespace slamer {
 namespace {
 
 TEST(WeanMap, ProbabilitiesOfFreeBecomeCellsColumnByColumn) {
-  const std::string excerpt = std::string(SLAMER_SOURCE_DIR) + "/test/datasets/excerpts/wean_map.dat";
+  const std::string excerpt = std::string(SLAMER_SOURCE_DIR "/test/datasets/excerpts/wean_map.dat");
   const GridCells map = read_wean_map(excerpt);
   ASSERT_EQ(map.geometry.width, 4);
   ASSERT_EQ(map.geometry.height, 3);
@@ -135,7 +135,7 @@ TEST(WeanMap, ProbabilitiesOfFreeBecomeCellsColumnByColumn) {
 // (the map read row by row, as slamer-mapgen --wean did until 2026-12-06) at
 // the mirrored poses they fit far worse: a mirrored world fits a mirrored scan.
 TEST(WeanMap, RealScansFitTheMapAtTheirPlacesAndNotTheMirroredMap) {
-  const std::string dir = std::string(SLAMER_SOURCE_DIR) + "/../shared/datasets/cmu_wean_16831/";
+  const std::string dir = std::string(SLAMER_SOURCE_DIR "/../shared/datasets/cmu_wean_16831/");
   if (!std::filesystem::exists(dir + "wean.dat.gz")) {
     GTEST_SKIP() << "../shared/datasets/cmu_wean_16831 is absent";
   }

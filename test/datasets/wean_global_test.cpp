@@ -29,7 +29,7 @@ constexpr double kHomeY = 41.5;
 // scan 405; seeds 1-3 ended 18-31 m away, and none of seeds 1-12 home. With a
 // prior on that offset 10 of seeds 1-12 end home, the other two 0.9-1.3 m off.
 TEST(WeanGlobalLocalization, Log1EndsAtTheHomeSpotInTwoOfThreeSeeds) {
-  const std::string data = std::string(SLAMER_SOURCE_DIR) + "/../shared/datasets/cmu_wean_16831/";
+  const std::string data = std::string(SLAMER_SOURCE_DIR "/../shared/datasets/cmu_wean_16831/");
   if (!std::filesystem::exists(data + "robotdata1.log.gz")) {
     GTEST_SKIP() << "../shared/datasets/cmu_wean_16831 is absent";
   }
@@ -41,9 +41,9 @@ TEST(WeanGlobalLocalization, Log1EndsAtTheHomeSpotInTwoOfThreeSeeds) {
                              {data + "robotdata1.log.gz", dir + "/log1.lcm", "--format", "cmu"});
   ASSERT_EQ(convert.wait(60), 0) << convert.stderr_text();
   // The shipped config at 5000 particles and every beam, as slamer-bench writes its own.
-  const std::string robot = std::string(SLAMER_SOURCE_DIR) + "/config/robots/cmu_wean.yaml";
+  const std::string robot = std::string(SLAMER_SOURCE_DIR "/config/robots/cmu_wean.yaml");
   write_text_file(dir + "/localizer.yaml",
-                  bench_localizer_config(std::string(SLAMER_SOURCE_DIR) + "/config/localizer.yaml",
+                  bench_localizer_config(std::string(SLAMER_SOURCE_DIR "/config/localizer.yaml"),
                                          {5000, 1, dir + "/map/map.yaml", robot}));
   int home = 0;
   std::string ends;

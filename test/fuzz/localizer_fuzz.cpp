@@ -39,7 +39,7 @@ class Bytes {
 const slamer::LocalizerNode& fresh_node(int mode) {
   static const std::vector<slamer::LocalizerNode> nodes = [] {
     const slamer::SemanticMap map =
-        slamer::load_semantic_map(std::string(SLAMER_SOURCE_DIR) + "/config/maps/small_room/map.yaml");
+        slamer::load_semantic_map(std::string(SLAMER_SOURCE_DIR "/config/maps/small_room/map.yaml"));
     std::vector<slamer::LocalizerNode> built;
     for (int m = 0; m < 3; ++m) {
       slamer::LocalizerOptions options;

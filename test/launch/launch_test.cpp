@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 const std::string kSource = SLAMER_SOURCE_DIR;
-const std::string kBin = std::string(SLAMER_BINARY_DIR) + "/bin";
+const std::string kBin = std::string(SLAMER_BINARY_DIR "/bin");
 
 std::vector<std::string> search() {
   return {kBin, "/usr/bin", "/bin"};

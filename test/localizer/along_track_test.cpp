@@ -28,7 +28,7 @@ class AlongTrackTest : public ::testing::Test {
  protected:
   SemanticMap map = posted_corridor();
   TrueWorld world{map, WorldOptions{}, "posted corridor"};
-  RobotOptions robot = load_options<RobotOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart_mini.yaml");
+  RobotOptions robot = load_options<RobotOptions>(std::string(SLAMER_SOURCE_DIR "/config/robots/icart_mini.yaml"));
   const Pose2 truth{15.1, 1.5, 0.0};
   LaserScan scan = simulated_scan(world, robot, truth);
 };

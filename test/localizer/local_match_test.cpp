@@ -134,7 +134,7 @@ TEST(LocalMatchInTheFilter, AScanThatFitsTwoPlacesAboutEquallyPutsParticlesAtBot
   const SemanticMap map = finned_corridor();
   const TrueWorld world(map, WorldOptions{}, "finned corridor");
   const RobotOptions robot =
-      load_options<RobotOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart_mini.yaml");
+      load_options<RobotOptions>(std::string(SLAMER_SOURCE_DIR "/config/robots/icart_mini.yaml"));
   LocalizerOptions options;
   options.mode = LocalizerMode::kLfm;
   options.particles = 500;

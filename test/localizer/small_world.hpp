@@ -33,7 +33,7 @@ inline LaserScan simulated_scan(const TrueWorld& world, const RobotOptions& robo
 }
 
 struct SmallWorld {
-  WorldOptions options = load_options<WorldOptions>(std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml");
+  WorldOptions options = load_options<WorldOptions>(std::string(SLAMER_SOURCE_DIR "/config/worlds/small_room.yaml"));
   RobotOptions robot = load_options<RobotOptions>(options.robot_path);
   SemanticMap map = load_semantic_map(options.map_path);
   TrueWorld world{map, options, "small_room"};

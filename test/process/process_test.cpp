@@ -210,7 +210,7 @@ TEST(Processes, BadConfigOrUrlExitsWithOneLine) {
   EXPECT_EQ(code, 1);
   EXPECT_EQ(err, "slamer-test-echo: config error: /nonexistent/echo.yaml: cannot open: No such file or directory\n");
 
-  const std::string path = std::string(SLAMER_BINARY_DIR) + "/echo_bad_key.yaml";
+  const std::string path = std::string(SLAMER_BINARY_DIR "/echo_bad_key.yaml");
   {
     std::FILE* f = std::fopen(path.c_str(), "w");
     std::fputs("process:\n  status_period: 1.0\n  statsu_channel: X\n", f);

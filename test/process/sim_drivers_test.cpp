@@ -123,9 +123,9 @@ TEST(SimThroughDrivers, LidarAndOdometryAreTheSimulatedOnes) {
       << urg->stderr_text() << wheels->stderr_text();
 
   const TempFile world{write_world()};
-  test::ChildProcess sim(test::binary_path("slamer-sim"), {"--world", world.path, "--config",
-                                                           std::string(SLAMER_SOURCE_DIR) + "/config/sim_drivers.yaml",
-                                                           "--seed", "1", "--speed", "1", "--lcm-url", url});
+  test::ChildProcess sim(test::binary_path("slamer-sim"),
+                         {"--world", world.path, "--config", std::string(SLAMER_SOURCE_DIR "/config/sim_drivers.yaml"),
+                          "--seed", "1", "--speed", "1", "--lcm-url", url});
   ASSERT_TRUE(bus.pump_until([&] { return !sim.running(); }, 40.0)) << sim.stderr_text();
   ASSERT_EQ(sim.wait(1.0), 0) << sim.stderr_text();
   bus.pump_for(0.5);

@@ -15,8 +15,8 @@ namespace {
 
 int run_sim(const std::string& seed, const std::string& out) {
   test::ChildProcess sim(test::binary_path("slamer-sim"),
-                         {"--world", std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml", "--config",
-                          std::string(SLAMER_SOURCE_DIR) + "/config/sim.yaml", "--seed", seed, "--out", out});
+                         {"--world", std::string(SLAMER_SOURCE_DIR "/config/worlds/small_room.yaml"), "--config",
+                          std::string(SLAMER_SOURCE_DIR "/config/sim.yaml"), "--seed", seed, "--out", out});
   const std::optional<int> code = sim.wait(60.0);
   EXPECT_TRUE(code.has_value());
   EXPECT_EQ(code.value_or(-1), 0) << sim.stderr_text();
@@ -75,10 +75,10 @@ namespace {
 // slamer-sim -> slamer-eval: ground truth as the estimate scores zero error,
 // dead reckoning does not.
 TEST(SlamerEval, GroundTruthScoresZeroAndOdometryDrifts) {
-  const std::string log = std::string(SLAMER_BINARY_DIR) + "/sim_eval.lcm";
+  const std::string log = std::string(SLAMER_BINARY_DIR "/sim_eval.lcm");
   ASSERT_EQ(run_sim("3", log), 0);
-  const std::string world = std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml";
-  const std::string config = std::string(SLAMER_SOURCE_DIR) + "/config/eval.yaml";
+  const std::string world = std::string(SLAMER_SOURCE_DIR "/config/worlds/small_room.yaml");
+  const std::string config = std::string(SLAMER_SOURCE_DIR "/config/eval.yaml");
   test::ChildProcess truth(test::binary_path("slamer-eval"),
                            {"--world", world, "--config", config, "--estimate", "GROUND_TRUTH", "--json", log});
   ASSERT_EQ(truth.wait(60.0), std::optional<int>(0)) << truth.stderr_text();
@@ -86,7 +86,7 @@ TEST(SlamerEval, GroundTruthScoresZeroAndOdometryDrifts) {
   EXPECT_EQ(pose.at("position_mean_m").get<double>(), 0.0) << pose.dump();
   EXPECT_EQ(pose.at("position_std_m").get<double>(), 0.0) << pose.dump();
   EXPECT_EQ(pose.at("position_max_m").get<double>(), 0.0) << pose.dump();
-  const std::string plot = std::string(SLAMER_BINARY_DIR) + "/sim_eval.png";
+  const std::string plot = std::string(SLAMER_BINARY_DIR "/sim_eval.png");
   test::ChildProcess odometry(test::binary_path("slamer-eval"),
                               {"--world", world, "--estimate", "ODOMETRY", "--plot", plot, log});
   ASSERT_EQ(odometry.wait(60.0), std::optional<int>(0)) << odometry.stderr_text();
@@ -108,12 +108,12 @@ namespace slamer {
 namespace {
 
 TEST(SlamerRender, WritesFramesOfALog) {
-  const std::string log = std::string(SLAMER_BINARY_DIR) + "/sim_render.lcm";
+  const std::string log = std::string(SLAMER_BINARY_DIR "/sim_render.lcm");
   ASSERT_EQ(run_sim("4", log), 0);
-  const std::string out = std::string(SLAMER_BINARY_DIR) + "/render_frames";
+  const std::string out = std::string(SLAMER_BINARY_DIR "/render_frames");
   std::filesystem::remove_all(out);
   test::ChildProcess render(test::binary_path("slamer-render"),
-                            {"--world", std::string(SLAMER_SOURCE_DIR) + "/config/worlds/small_room.yaml", "--out", out,
+                            {"--world", std::string(SLAMER_SOURCE_DIR "/config/worlds/small_room.yaml"), "--out", out,
                              "--every", "200", "--max-frames", "3", log});
   ASSERT_EQ(render.wait(60.0), std::optional<int>(0)) << render.stderr_text();
   EXPECT_TRUE(std::filesystem::exists(out + "/frame_000000.png"));

@@ -50,7 +50,7 @@ void write(lcm::LogFile& log, const std::string& channel, Msg msg, int64_t utime
 }
 
 TEST(SlamerSpy, LcmSpyFindsAndDecodesEverySlamerType) {
-  const std::string bin = std::string(SLAMER_BINARY_DIR) + "/bin";
+  const std::string bin = std::string(SLAMER_BINARY_DIR "/bin");
   int code = 0;
   std::string classpath = run(bin + "/slamer-spy --print-classpath", &code);
   ASSERT_EQ(code, 0) << classpath;
@@ -59,7 +59,7 @@ TEST(SlamerSpy, LcmSpyFindsAndDecodesEverySlamerType) {
   }
   ASSERT_NE(classpath.find("slamer_lcmtypes.jar"), std::string::npos) << classpath;
 
-  const std::string log_path = std::string(SLAMER_BINARY_DIR) + "/spy_types_test.lcm";
+  const std::string log_path = std::string(SLAMER_BINARY_DIR "/spy_types_test.lcm");
   {
     lcm::LogFile log(log_path, "w");
     ASSERT_TRUE(log.good());
@@ -82,7 +82,7 @@ TEST(SlamerSpy, LcmSpyFindsAndDecodesEverySlamerType) {
     write(log, "PROCESS_STATUS", status, 10);
   }
 
-  const std::string checker_dir = std::string(SLAMER_BINARY_DIR) + "/test/spy_type_check.jar";
+  const std::string checker_dir = std::string(SLAMER_BINARY_DIR "/test/spy_type_check.jar");
   const std::string output = run(
       "java -Djava.awt.headless=true -cp '" + classpath + ":" + checker_dir + "' SpyTypeCheck '" + log_path + "' 2>&1",
       &code);

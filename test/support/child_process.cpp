@@ -131,7 +131,7 @@ std::string unique_lcm_url(int salt) {
 }
 
 std::string binary_path(const std::string& name) {
-  return std::string(SLAMER_BINARY_DIR) + "/bin/" + name;
+  return std::string(SLAMER_BINARY_DIR "/bin/") + name;
 }
 
 }  // namespace slamer::test

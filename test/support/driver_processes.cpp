@@ -46,7 +46,7 @@ std::unique_ptr<ChildProcess> start_urg_sim(std::vector<std::string> args, int* 
 
 std::unique_ptr<ChildProcess> start_urg(const std::string& url, int port, const std::vector<std::string>& extra,
                                         const std::string& config) {
-  std::vector<std::string> args = {"--config",  std::string(SLAMER_SOURCE_DIR) + "/" + config,
+  std::vector<std::string> args = {"--config",  std::string(SLAMER_SOURCE_DIR "/") + config,
                                    "--host",    "127.0.0.1",
                                    "--port",    std::to_string(port),
                                    "--lcm-url", url};
@@ -55,8 +55,7 @@ std::unique_ptr<ChildProcess> start_urg(const std::string& url, int port, const 
 }
 
 std::unique_ptr<ChildProcess> start_tfrog_sim(const std::string& link, const std::vector<std::string>& args) {
-  std::vector<std::string> all = {"--link", link, "--robot",
-                                  std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart-mini.param"};
+  std::vector<std::string> all = {"--link", link, "--robot", SLAMER_SOURCE_DIR "/config/robots/icart-mini.param"};
   all.insert(all.end(), args.begin(), args.end());
   auto sim = std::make_unique<ChildProcess>(binary_path("slamer-tfrog-sim"), all);
   for (int i = 0; i < 200 && access(link.c_str(), F_OK) != 0; ++i) {
@@ -67,7 +66,7 @@ std::unique_ptr<ChildProcess> start_tfrog_sim(const std::string& link, const std
 
 std::unique_ptr<ChildProcess> start_wheels(const std::string& url, const std::string& link, const std::string& config) {
   return std::make_unique<ChildProcess>(
-      binary_path("slamer-wheels"), std::vector<std::string>{"--config", std::string(SLAMER_SOURCE_DIR) + "/" + config,
+      binary_path("slamer-wheels"), std::vector<std::string>{"--config", std::string(SLAMER_SOURCE_DIR "/") + config,
                                                              "--device", link, "--lcm-url", url});
 }
 

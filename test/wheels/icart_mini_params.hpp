@@ -6,7 +6,7 @@
 namespace slamer::tfrog {
 
 inline std::string icart_mini_param_file() {
-  return std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart-mini.param";
+  return std::string(SLAMER_SOURCE_DIR "/config/robots/icart-mini.param");
 }
 
 }  // namespace slamer::tfrog

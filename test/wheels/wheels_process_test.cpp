@@ -328,12 +328,11 @@ TEST(WheelsProcess, CanEncodersWithBusOffGarbageAndShortFrames) {
   const std::string url = test::unique_lcm_url(16);
   const std::string socket = "/tmp/slamer_can_test_" + std::to_string(getpid());
   Bus bus(url);
-  ChildProcess source(
-      binary_path("slamer-can-source"),
-      {"--listen", socket, "--robot", std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart-mini.param", "--path",
-       "1,0.5,2", "--bus-off-at", "2.5", "--bus-off-for", "1.5", "--garbage-every", "50", "--wrong-length-every", "70",
-       "--duration", "8"});
-  ChildProcess wheels(binary_path("slamer-wheels"), {"--config", std::string(SLAMER_SOURCE_DIR) + "/config/wheels.yaml",
+  ChildProcess source(binary_path("slamer-can-source"),
+                      {"--listen", socket, "--robot", std::string(SLAMER_SOURCE_DIR "/config/robots/icart-mini.param"),
+                       "--path", "1,0.5,2", "--bus-off-at", "2.5", "--bus-off-for", "1.5", "--garbage-every", "50",
+                       "--wrong-length-every", "70", "--duration", "8"});
+  ChildProcess wheels(binary_path("slamer-wheels"), {"--config", std::string(SLAMER_SOURCE_DIR "/config/wheels.yaml"),
                                                      "--can", "unix:" + socket, "--lcm-url", url});
   ASSERT_TRUE(bus.pump_until([&] { return source.stdout_text().find("restarted") != std::string::npos; }, 10.0))
       << wheels.stderr_text();

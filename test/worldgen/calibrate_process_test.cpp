@@ -15,7 +15,7 @@ namespace {
 const std::string kSource = SLAMER_SOURCE_DIR;
 
 TEST(SlamerCalibrateRecognizer, FitsOnGeneratedTrainingWorldsTheSameForASeed) {
-  const std::string dir = std::string(SLAMER_BINARY_DIR) + "/calibrate_process_test";
+  const std::string dir = std::string(SLAMER_BINARY_DIR "/calibrate_process_test");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/short.yaml") << "corridor: {length_min: 14, length_max: 20}\n"

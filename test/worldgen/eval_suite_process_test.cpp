@@ -14,7 +14,7 @@ namespace slamer {
 namespace {
 
 TEST(SlamerEvalSuite, ThreeShortWorlds) {
-  const std::string dir = std::string(SLAMER_BINARY_DIR) + "/eval_suite_process_test";
+  const std::string dir = std::string(SLAMER_BINARY_DIR "/eval_suite_process_test");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/short.yaml") << "corridor: {length_min: 14, length_max: 20}\n"
@@ -22,7 +22,7 @@ TEST(SlamerEvalSuite, ThreeShortWorlds) {
   test::ChildProcess suite(
       test::binary_path("slamer-eval-suite"),
       {"--worlds", "3", "--seed", "0", "--out", dir + "/out", "--gen-config", dir + "/short.yaml", "--jobs", "3",
-       "--localizer-seeds", "2", "--config", std::string(SLAMER_SOURCE_DIR) + "/config/eval.yaml"});
+       "--localizer-seeds", "2", "--config", std::string(SLAMER_SOURCE_DIR "/config/eval.yaml")});
   ASSERT_EQ(suite.wait(170.0).value_or(-1), 0) << suite.stderr_text();
   const std::string out = suite.stdout_text();
   for (const std::string world : {"100000", "100001", "100002"}) {

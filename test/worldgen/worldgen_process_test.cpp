@@ -21,15 +21,15 @@ int run(const std::string& program, const std::vector<std::string>& args, double
 }
 
 TEST(SlamerGenWorld, TheSimulatorDrivesAGeneratedWorld) {
-  const std::string dir = std::string(SLAMER_BINARY_DIR) + "/worldgen_process_test";
+  const std::string dir = std::string(SLAMER_BINARY_DIR "/worldgen_process_test");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/short.yaml") << "route: {rooms_min: 1, rooms_max: 1, corridor_fraction: 0.3}\n";
   ASSERT_EQ(run("slamer-gen-world", {"--seed", "5", "--out", dir + "/world", "--config", dir + "/short.yaml"}), 0);
-  ASSERT_EQ(run("slamer-sim",
-                {"--world", dir + "/world/world.yaml", "--config", std::string(SLAMER_SOURCE_DIR) + "/config/sim.yaml",
-                 "--seed", "1", "--out", dir + "/run.lcm"}),
-            0);
+  ASSERT_EQ(
+      run("slamer-sim", {"--world", dir + "/world/world.yaml", "--config",
+                         std::string(SLAMER_SOURCE_DIR "/config/sim.yaml"), "--seed", "1", "--out", dir + "/run.lcm"}),
+      0);
   lcm::LogFile log(dir + "/run.lcm", "r");
   std::map<std::string, int> counts;
   int with_intensities = 0;

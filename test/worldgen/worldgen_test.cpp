@@ -17,10 +17,10 @@
 namespace slamer {
 namespace {
 
-const std::string kRobot = std::string(SLAMER_SOURCE_DIR) + "/config/robots/icart_mini.yaml";
+const std::string kRobot = std::string(SLAMER_SOURCE_DIR "/config/robots/icart_mini.yaml");
 
 std::string make_world(uint64_t seed, const std::string& name, const WorldGenOptions& options = {}) {
-  const std::string dir = std::string(SLAMER_BINARY_DIR) + "/worldgen_test/" + name;
+  const std::string dir = std::string(SLAMER_BINARY_DIR "/worldgen_test/") + name;
   std::filesystem::remove_all(dir);
   write_world(generate_building(options, seed), options, seed, kRobot, dir);
   return dir;
