@@ -297,6 +297,39 @@ TEST(BenchFiles, AKidnapLeavesOutTheCarryAndTheOdometryMeasuresOnlyTheOrdinarySt
             "kidnap: scans 3-6 left out; at scan 3 (0.3 s into the run) the robot was carried 0.4 m and 0 deg unseen");
 }
 
+TEST(BenchFiles, PosesOfAKidnappedRunCoverTheWholeLogTheCarriedScansRepeatingThePoseBefore) {
+  ImportedLog whole;
+  for (int k = 0; k < 6; ++k) {
+    LaserScan scan;
+    scan.utime = 1'000'000 + 100'000 * k;
+    scan.sensor_utime = 7'000'000 + 100'000 * k;
+    whole.scans.push_back(scan);
+  }
+  // Scans 2 and 3 carried: four poses kept, for scans 0, 1, 4 and 5.
+  std::vector<BenchPose> kept;
+  for (int k : {0, 1, 4, 5}) {
+    BenchPose p;
+    p.t = 7.0 + 0.1 * k;
+    p.pose = {static_cast<double>(k), 0.0, 0.0};
+    p.status = k == 1 ? BenchStatus::kUncertain : BenchStatus::kOk;
+    kept.push_back(p);
+  }
+  const std::vector<BenchPose> all = with_carried_scans(kept, whole, 2, 4);
+  ASSERT_EQ(all.size(), 6u);
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    EXPECT_NEAR(all[k].t, 7.0 + 0.1 * static_cast<double>(k), 1e-9) << k;
+  }
+  for (std::size_t k : {2u, 3u}) {
+    EXPECT_DOUBLE_EQ(all[k].pose.x, 1.0) << k;
+    EXPECT_EQ(all[k].status, BenchStatus::kUncertain) << k;
+    EXPECT_FALSE(all[k].has_report) << k;
+  }
+  EXPECT_DOUBLE_EQ(all[4].pose.x, 4.0);
+  EXPECT_TRUE(all[4].has_report);
+  EXPECT_THROW(with_carried_scans(kept, whole, 2, 5), std::invalid_argument);
+  EXPECT_THROW(with_carried_scans(kept, whole, 0, 2), std::invalid_argument);
+}
+
 TEST(BenchFiles, LocalizerArgumentsStartAtTheReferencePoseOrGloballyAndKidnapScansAreChecked) {
   BenchLocalizerRun run{"/d/localizer.yaml", "/d/map.yaml", "/d/robot.yaml", "lfm", "3", Pose2{1.5, -2.0, 0.25}};
   const std::vector<std::string> from_pose = bench_localizer_args(run, "in.lcm", "out.lcm");

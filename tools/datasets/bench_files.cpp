@@ -154,6 +154,24 @@ std::vector<BenchPose> poses_per_scan(const ImportedLog& log, const std::vector<
   return poses_per_scan(utimes, log_utimes, reports, initial_pose, missing);
 }
 
+std::vector<BenchPose> with_carried_scans(const std::vector<BenchPose>& kept, const ImportedLog& whole,
+                                          std::size_t from, std::size_t to) {
+  if (from == 0 || to <= from || to >= whole.scans.size() || kept.size() != whole.scans.size() - (to - from)) {
+    throw std::invalid_argument("with_carried_scans: " + std::to_string(kept.size()) + " poses for a log of " +
+                                std::to_string(whole.scans.size()) + " scans carried from " + std::to_string(from) +
+                                " to " + std::to_string(to));
+  }
+  std::vector<BenchPose> poses(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(from));
+  for (std::size_t k = from; k < to; ++k) {
+    BenchPose unseen = kept[from - 1];
+    unseen.t = static_cast<double>(whole.scans[k].sensor_utime) * 1e-6;
+    unseen.has_report = false;
+    poses.push_back(unseen);
+  }
+  poses.insert(poses.end(), kept.begin() + static_cast<std::ptrdiff_t>(from), kept.end());
+  return poses;
+}
+
 std::string describe_kidnap(const ImportedLog& whole, const ImportedLog& kidnapped_log, std::size_t from) {
   const std::size_t to = from + whole.scans.size() - kidnapped_log.scans.size();
   const Pose2 moved = between(whole.reference.at(from), whole.reference.at(to));

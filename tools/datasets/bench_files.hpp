@@ -66,6 +66,14 @@ std::pair<int64_t, int64_t> kidnap_scans(const std::vector<double>& values, std:
 std::vector<BenchPose> poses_per_scan(const ImportedLog& log, const std::vector<PoseReport>& reports,
                                       const Pose2& initial_pose, int64_t* missing);
 
+// poses.txt's poses for the whole log of a kidnapped run: `kept` (one per scan
+// of the kidnapped log) with, for each scan carried unseen, [from, to), its own
+// time and the pose and status of scan from - 1 (the localizer saw nothing
+// since), has_report false. Throws std::invalid_argument unless kept has one
+// pose per scan of the whole log but the carried ones and 0 < from < to.
+std::vector<BenchPose> with_carried_scans(const std::vector<BenchPose>& kept, const ImportedLog& whole,
+                                          std::size_t from, std::size_t to);
+
 // "kidnap: scans FROM-TO-1 left out; at scan FROM (T s into the run) the robot was carried D m and
 // A deg unseen", from the whole log's reference and the kidnapped log's time.
 std::string describe_kidnap(const ImportedLog& whole, const ImportedLog& kidnapped_log, std::size_t from);

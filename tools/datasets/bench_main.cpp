@@ -94,7 +94,10 @@ int bench(const CommandLine& cli) {
   const std::vector<BenchPose> poses = poses_per_scan(
       log, read_pose_reports((dir / "localized.lcm").string(), cli.get("pose-channel")), start, &missing);
   const BenchScore score = score_poses(poses, log.reference);
-  write_text_file((dir / "poses.txt").string(), format_poses(poses));
+  write_text_file((dir / "poses.txt").string(),
+                  format_poses(carry ? with_carried_scans(poses, whole, static_cast<std::size_t>(carry->first),
+                                                          static_cast<std::size_t>(carry->second))
+                                     : poses));
   write_text_file((dir / "summary.json").string(), summary_json(score, info));
   write_bench_plot(poses, score, std::filesystem::path(log_path).filename().string(), (dir / "errors.png").string());
   if (missing > 0) {
@@ -120,7 +123,8 @@ int main(int argc, char** argv) {
       "from the first corrected pose (or --global), then scoring against the corrected poses (GMapping's,\n"
       "not ground truth): OUT/poses.txt (`t x y theta status` per scan, t the log's time; a scan without\n"
       "a POSE repeats the previous pose), OUT/summary.json, OUT/errors.png. --kidnap FROM TO leaves\n"
-      "scans FROM to TO - 1 out and hides the carry from the odometry; the outputs count the scans kept.",
+      "scans FROM to TO - 1 out and hides the carry from the odometry; poses.txt repeats the pose before\n"
+      "the carry for them, the scores count the scans kept.",
       [](slamer::CommandLine& cli) {
         cli.add_option("carmen", "LOG", "*-corrected CARMEN log (.gz or plain)");
         cli.add_option("out", "DIR", "output folder");

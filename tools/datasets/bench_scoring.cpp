@@ -206,8 +206,9 @@ std::string summary_json(const BenchScore& score, const BenchRunInfo& info) {
                                               {"to_scan", info.kidnap->second},
                                               {"note",
                                                "the robot carried unseen: the log's scans from_scan to to_scan - 1 "
-                                               "left out (the map keeps them); scans, poses.txt and the scores "
-                                               "count the scans kept"}}
+                                               "left out (the map keeps them); scans and the scores count the scans "
+                                               "kept; poses.txt has every scan of the log, a carried one with "
+                                               "the pose before the carry"}}
                              : nlohmann::json(nullptr)},
       {"scans", score.scans},
       {"scans_without_pose", score.scans_without_pose},
