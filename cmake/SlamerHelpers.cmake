@@ -34,6 +34,7 @@ function(slamer_test name)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main slamer_warnings)
   slamer_use_pch(${name} test)
+  target_compile_options(${name} PRIVATE ${SLAMER_TEST_COMPILE_OPTIONS})
   target_compile_definitions(${name} PRIVATE SLAMER_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                              SLAMER_BINARY_DIR="${PROJECT_BINARY_DIR}")
   if(NOT ARG_LABELS)

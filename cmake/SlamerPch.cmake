@@ -28,6 +28,7 @@ if(SLAMER_PCH AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   add_library(slamer_pch_test STATIC ${CMAKE_BINARY_DIR}/slamer_pch_empty.cpp)
   target_link_libraries(slamer_pch_test PRIVATE Eigen3::Eigen GTest::gtest slamer_warnings slamer_pch_flags)
   target_precompile_headers(slamer_pch_test PRIVATE ${slamer_pch_headers} <gtest/gtest.h>)
+  target_compile_options(slamer_pch_test PRIVATE ${SLAMER_TEST_COMPILE_OPTIONS})
 endif()
 
 # slamer_use_pch(TARGET code|test): TARGET reuses the libraries' or the tests' precompiled header.
