@@ -28,7 +28,7 @@ endfunction()
 # runs beside it). There the stack alone needs more than one core (the recognizer 14 ms a scan,
 # the localizer 5.5 ms, at 40 Hz): beside another test its scans went late, the recognizer
 # fell seconds behind and the localizer rightly said "no LINE_OBJECTS", for no fault of the code.
-# Optimized, the whole stack needs about a third of a core, and one other test may run beside it.
+# Optimized, the whole stack needs a third to a half of a core: one other test may run beside it.
 function(slamer_test name)
   cmake_parse_arguments(ARG "REAL_TIME" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
