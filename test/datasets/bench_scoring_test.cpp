@@ -348,7 +348,7 @@ TEST(BenchFiles, LocalizerArgumentsStartAtTheReferencePoseOrGloballyAndKidnapSca
   ASSERT_EQ(global.size(), 15u);
   EXPECT_EQ(global[6], "--global");
   EXPECT_EQ(std::count(global.begin(), global.end(), "--initial-pose"), 0);
-  EXPECT_EQ(kidnap_scans({40.0, 90.0}, 150), (std::pair<int64_t, int64_t>{40, 90}));
+  EXPECT_EQ(kidnap_scans({40.0, 90.0}, 150), (std::pair<std::size_t, std::size_t>{40, 90}));
   EXPECT_THROW(kidnap_scans({0.0, 90.0}, 150), CommandLineError);
   EXPECT_THROW(kidnap_scans({90.0, 40.0}, 150), CommandLineError);
   EXPECT_THROW(kidnap_scans({40.0, 150.0}, 150), CommandLineError);

@@ -135,12 +135,12 @@ std::vector<std::string> bench_localizer_args(const BenchLocalizerRun& run, cons
   return args;
 }
 
-std::pair<int64_t, int64_t> kidnap_scans(const std::vector<double>& values, std::size_t scans) {
+std::pair<std::size_t, std::size_t> kidnap_scans(const std::vector<double>& values, std::size_t scans) {
   if (values.size() != 2 || values[0] < 1 || values[1] <= values[0] || values[1] >= static_cast<double>(scans) ||
       values[0] != std::floor(values[0]) || values[1] != std::floor(values[1])) {
     throw CommandLineError("--kidnap FROM TO needs scan numbers 0 < FROM < TO < " + std::to_string(scans));
   }
-  return {static_cast<int64_t>(values[0]), static_cast<int64_t>(values[1])};
+  return {static_cast<std::size_t>(values[0]), static_cast<std::size_t>(values[1])};
 }
 
 std::vector<BenchPose> poses_per_scan(const ImportedLog& log, const std::vector<PoseReport>& reports,

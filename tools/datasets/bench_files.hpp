@@ -60,7 +60,7 @@ std::vector<std::string> bench_localizer_args(const BenchLocalizerRun& run, cons
 
 // The --kidnap values as scans [first, second) of a log of `scans` scans: whole numbers,
 // 0 < FROM < TO < scans; throws CommandLineError otherwise.
-std::pair<int64_t, int64_t> kidnap_scans(const std::vector<double>& values, std::size_t scans);
+std::pair<std::size_t, std::size_t> kidnap_scans(const std::vector<double>& values, std::size_t scans);
 
 // One pose per scan of `log` (poses_per_scan with its scans' utimes and own times).
 std::vector<BenchPose> poses_per_scan(const ImportedLog& log, const std::vector<PoseReport>& reports,

@@ -33,13 +33,12 @@ int bench(const CommandLine& cli) {
     throw std::runtime_error("no scans with corrected poses in " + log_path);
   }
   log_line("slamer-bench", LogLevel::kInfo, log_path + ": " + describe_import(whole));
-  const std::optional<std::pair<int64_t, int64_t>> carry =
+  const std::optional<std::pair<std::size_t, std::size_t>> carry =
       cli.has("kidnap") ? std::optional(kidnap_scans(cli.get_doubles("kidnap"), whole.scans.size())) : std::nullopt;
   // The map from every scan; the localizer sees the kidnapped log.
-  const ImportedLog log =
-      carry ? kidnapped(whole, static_cast<std::size_t>(carry->first), static_cast<std::size_t>(carry->second)) : whole;
+  const ImportedLog log = carry ? kidnapped(whole, carry->first, carry->second) : whole;
   if (carry) {
-    log_line("slamer-bench", LogLevel::kInfo, describe_kidnap(whole, log, static_cast<std::size_t>(carry->first)));
+    log_line("slamer-bench", LogLevel::kInfo, describe_kidnap(whole, log, carry->first));
   }
   std::filesystem::create_directories(dir);
   write_dataset_lcm(log, (dir / "input.lcm").string());
@@ -95,9 +94,7 @@ int bench(const CommandLine& cli) {
       log, read_pose_reports((dir / "localized.lcm").string(), cli.get("pose-channel")), start, &missing);
   const BenchScore score = score_poses(poses, log.reference);
   write_text_file((dir / "poses.txt").string(),
-                  format_poses(carry ? with_carried_scans(poses, whole, static_cast<std::size_t>(carry->first),
-                                                          static_cast<std::size_t>(carry->second))
-                                     : poses));
+                  format_poses(carry ? with_carried_scans(poses, whole, carry->first, carry->second) : poses));
   write_text_file((dir / "summary.json").string(), summary_json(score, info));
   write_bench_plot(poses, score, std::filesystem::path(log_path).filename().string(), (dir / "errors.png").string());
   if (missing > 0) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -93,7 +94,7 @@ struct BenchRunInfo {
   std::string command;               // the localizer command line
   double startup_cpu_seconds = 0.0;  // the same on the first scan alone (loading the map, building fields)
   bool global = false;               // started by global localization, not at the first reference pose
-  std::optional<std::pair<int64_t, int64_t>> kidnap;  // scans [first, second) of the log left out (kidnapped())
+  std::optional<std::pair<std::size_t, std::size_t>> kidnap;  // scans [first, second) of the log left out (kidnapped())
 };
 std::string summary_json(const BenchScore& score, const BenchRunInfo& info);
 
