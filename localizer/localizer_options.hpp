@@ -24,7 +24,8 @@ enum class PhysicalLineDistance { kMean, kFarthest };
 
 // Motion model (Eq. (5)): standard deviations of the odometry increment's
 // rotations and translation grow with the increment (Probabilistic Robotics
-// 5.4); adapted to how well the scans fit (issue 9); without odometry the
+// 5.4); adapted to how well the scans fit (issue 9), with a heavy tail on the
+// heading for wheel bumps and slips (motion_model.hpp); without odometry the
 // particles diffuse.
 struct MotionOptions {
   double alpha_rot_from_rot = 0.05;          // alpha1 [rad/rad]
@@ -34,6 +35,8 @@ struct MotionOptions {
   double noise_gain_max = 4.0;               // noise x up to this as the last scan's fit falls to status.fit_lost
   double noise_floor_trans = 0.003;          // [m] per update x (gain - 1): spreads even a zero increment
   double noise_floor_rot = 0.003;            // [rad] per update x (gain - 1)
+  double heading_slip_fraction = 0.05;       // of the particles, each scan the base moved: the heavy tail
+  double heading_slip_sigma = 0.02;          // [rad] their extra heading noise (a wheel bump or slip)
   double odometry_correction_memory = 10.0;  // [m] learn the odometry's heading error over this (0: off)
   double no_odometry_speed = 0.5;            // [m/s] without odometry the particles diffuse this fast
   double no_odometry_turn_rate = 0.5;        // [rad/s]

@@ -18,6 +18,14 @@ OdometryIncrement decompose(const Pose2& from, const Pose2& to) {
   return {rot1, trans, angle_diff(angle_diff(to.theta, from.theta), rot1)};
 }
 
+namespace {
+
+// Below these the wheels stood still: a base that does not move does not slip.
+constexpr double kMovingTrans = 1e-4;  // [m]
+constexpr double kMovingTurn = 1e-4;   // [rad]
+
+}  // namespace
+
 Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const MotionOptions& o, std::mt19937& rng,
                     double gain) {
   const double trans = std::abs(u.trans);
@@ -33,7 +41,15 @@ Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const MotionO
   std::normal_distribution<double> standard(0.0, 1.0);
   const double rot1 = u.rot1 + sd_rot1 * standard(rng);
   const double t = u.trans + sd_trans * standard(rng);
-  const double rot2 = u.rot2 + sd_rot2 * standard(rng);
+  double rot2 = u.rot2 + sd_rot2 * standard(rng);
+  // No draw without a slip fraction, so a configuration without it keeps its random sequence.
+  const bool moving = trans > kMovingTrans || std::abs(u.rot1 + u.rot2) > kMovingTurn;
+  if (o.heading_slip_fraction > 0.0 && moving) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    if (unit(rng) < o.heading_slip_fraction) {
+      rot2 += o.heading_slip_sigma * standard(rng);
+    }
+  }
   const double heading = pose.theta + rot1;
   return {pose.x + t * std::cos(heading), pose.y + t * std::sin(heading), wrap_angle(heading + rot2)};
 }

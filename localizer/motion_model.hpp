@@ -2,6 +2,16 @@
 // Eq. (5), u ~ N(u_t, Sigma_u)): the odometry increment between two times is
 // decomposed into rotate / translate / rotate (Probabilistic Robotics 5.4),
 // each perturbed with a standard deviation that grows with the increment.
+//
+// A heavy tail on the heading (issue 9): a wheel that bumps over a cable or
+// slips in a turn turns the odometry's heading by a degree or so within one
+// scan, 50 standard deviations of the alphas' per-scan noise. No particle is
+// then near the true heading, and the scans pull the cloud there only over
+// dozens of scans (LFM on paper_indoor with the realistic simulated odometry:
+// 3.9 cm mean error against 3.5 with odometry that neither bumps nor slips).
+// So at each scan's prediction in which the base moved, heading_slip_fraction
+// of the particles get extra heading noise of heading_slip_sigma: the few
+// that land near the truth after a slip outweigh the rest at the next scan.
 #pragma once
 
 #include <random>

@@ -11,7 +11,8 @@
 //
 // Robust on real odometry (issue 9): the status rests on the scan fit at the
 // estimate (scan_fit.hpp), not on the particles' spread; the motion noise
-// grows as the last scan fits worse (up to noise_gain_max) and has a floor;
+// grows as the last scan fits worse (up to noise_gain_max), has a floor and
+// a heavy tail on the heading for wheel bumps and slips (motion_model.hpp);
 // the odometry's systematic heading error is learned while the filter is
 // sure and taken out of the increments (odometry_correction.hpp);
 // while the prediction fits the scan poorly, a local scan match

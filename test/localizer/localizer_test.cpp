@@ -74,6 +74,7 @@ TEST(MotionModel, NoiselessMotionIsExactAndNoiseHasTheRightSpread) {
   LocalizerOptions exact;
   exact.motion.alpha_rot_from_rot = exact.motion.alpha_rot_from_trans = exact.motion.alpha_trans_from_trans =
       exact.motion.alpha_trans_from_rot = 0.0;
+  exact.motion.heading_slip_fraction = 0.0;
   std::mt19937 rng(1);
   const Pose2 start{-3.0, 4.0, 1.0};
   const Pose2 moved = sample_motion(start, u, exact.motion, rng);

@@ -149,5 +149,43 @@ TEST(MotionModel, ZeroIncrementSpreadsOnlyWhenTheGainIsUp) {
   EXPECT_NEAR(std::sqrt(spread_up / 2000), 3.0 * o.motion.noise_floor_rot, 0.1 * 3.0 * o.motion.noise_floor_rot);
 }
 
+// The motion model's heavy tail: while the base moves, heading_slip_fraction
+// of the draws turn by an extra N(0, heading_slip_sigma), a slip 50 times the
+// alphas' spread; the rest keep the alphas' noise, and a base that stands does not slip.
+TEST(MotionModel, AFractionOfTheDrawsOfAMovingBaseSlipInHeading) {
+  LocalizerOptions o;
+  o.motion.heading_slip_fraction = 0.05;
+  o.motion.heading_slip_sigma = 0.02;
+  std::mt19937 rng(5);
+  const OdometryIncrement step = decompose({}, {0.02, 0.0, 0.0});  // one scan at 0.8 m/s and 40 Hz
+  const double alphas_sd = o.motion.alpha_rot_from_trans * 0.02;   // 0.0004 rad for each of rot1 and rot2
+  const int n = 40000;
+  int slipped = 0;
+  double slip_squares = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double turn = sample_motion({}, step, o.motion, rng).theta;
+    if (std::abs(turn) > 10.0 * alphas_sd) {  // the alphas alone: 7 standard deviations of rot1 + rot2
+      ++slipped;
+      slip_squares += turn * turn;
+    }
+  }
+  // 5 % slip, of them 84 % more than 0.004 rad (|N(0, 0.02)| > 0.2 sigma).
+  EXPECT_NEAR(static_cast<double>(slipped) / n, 0.05 * 0.84, 0.004);
+  // Their spread: N(0, 0.02) beyond 0.2 sigma has an RMS of 1.089 sigma.
+  EXPECT_NEAR(std::sqrt(slip_squares / slipped), 1.089 * 0.02, 0.0015);
+  const OdometryIncrement standing{};
+  double largest = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    largest = std::max(largest, std::abs(sample_motion({}, standing, o.motion, rng).theta));
+  }
+  EXPECT_EQ(largest, 0.0);
+  o.motion.heading_slip_fraction = 0.0;
+  int beyond = 0;
+  for (int i = 0; i < n; ++i) {
+    beyond += std::abs(sample_motion({}, step, o.motion, rng).theta) > 10.0 * alphas_sd;
+  }
+  EXPECT_EQ(beyond, 0);
+}
+
 }  // namespace
 }  // namespace slamer
