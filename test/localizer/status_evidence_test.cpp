@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "localizer/localizer_messages.hpp"
 #include "localizer/motion_model.hpp"
@@ -185,6 +186,20 @@ TEST(MotionModel, AFractionOfTheDrawsOfAMovingBaseSlipInHeading) {
     beyond += std::abs(sample_motion({}, step, o.motion, rng).theta) > 10.0 * alphas_sd;
   }
   EXPECT_EQ(beyond, 0);
+}
+
+TEST(MotionOptions, AHeadingSlipOutOfRangeIsRefusedWithItsKey) {
+  const auto error_of = localizer_options_error;
+  EXPECT_EQ(error_of("motion: {heading_slip_fraction: 0, heading_slip_sigma: 0}\n"), "");
+  for (const char* bad : {"-0.1", "1.5", "nan", "many"}) {
+    EXPECT_NE(
+        error_of(std::string("motion: {heading_slip_fraction: ") + bad + "}\n").find("'motion.heading_slip_fraction'"),
+        std::string::npos)
+        << bad;
+    EXPECT_NE(error_of(std::string("motion: {heading_slip_sigma: ") + bad + "}\n").find("'motion.heading_slip_sigma'"),
+              std::string::npos)
+        << bad;
+  }
 }
 
 }  // namespace
