@@ -321,7 +321,9 @@ UpdateResult LocalizerNode::process(const Pending& pending) {
   } else {
     const std::optional<Pose2> odometry = odometry_at(utime);
     if (last_odometry_used_) {
-      filter_.predict(*last_odometry_used_, *odometry);
+      // last_odometry_used_ was taken at the last processed scan's time.
+      filter_.predict(*last_odometry_used_, *odometry,
+                      last_processed_utime_ ? std::max(0.0, seconds(utime - *last_processed_utime_)) : 0.0);
     }
     last_odometry_used_ = odometry;
   }

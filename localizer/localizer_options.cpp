@@ -46,6 +46,7 @@ void read_options(const ConfigReader& reader, MotionOptions* o) {
   reader.read("noise_gain_max", &o->noise_gain_max, in_range(1.0, 100.0));
   reader.read("noise_floor_trans", &o->noise_floor_trans, in_range(0.0, 1.0));
   reader.read("noise_floor_rot", &o->noise_floor_rot, in_range(0.0, 1.0));
+  reader.read("noise_floor_interval", &o->noise_floor_interval, in_range(1e-3, 100.0));
   reader.read("heading_slip_fraction", &o->heading_slip_fraction, probability());
   reader.read("heading_slip_sigma", &o->heading_slip_sigma, in_range(0.0, 1.0));
   reader.read("odometry_correction_memory", &o->odometry_correction_memory, in_range(0.0, 1000.0));

@@ -33,8 +33,9 @@ struct MotionOptions {
   double alpha_trans_from_trans = 0.05;      // alpha3 [m/m]
   double alpha_trans_from_rot = 0.02;        // alpha4 [m/rad]
   double noise_gain_max = 4.0;               // noise x up to this as the last scan's fit falls to status.fit_lost
-  double noise_floor_trans = 0.003;          // [m] per update x (gain - 1): spreads even a zero increment
-  double noise_floor_rot = 0.003;            // [rad] per update x (gain - 1)
+  double noise_floor_trans = 0.003;          // [m] per scan x (gain - 1): spreads even a zero increment
+  double noise_floor_rot = 0.003;            // [rad] per scan x (gain - 1)
+  double noise_floor_interval = 0.25;        // [s] scans closer get sqrt(dt / this) of the floor (a random walk)
   double heading_slip_fraction = 0.05;       // of the particles, each scan the base moved: the heavy tail
   double heading_slip_sigma = 0.02;          // [rad] their extra heading noise (a wheel bump or slip)
   double odometry_correction_memory = 10.0;  // [m] learn the odometry's heading error over this (0: off)

@@ -1,5 +1,6 @@
 #include "localizer/motion_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace slamer {
@@ -27,12 +28,18 @@ constexpr double kMovingTurn = 1e-4;   // [rad]
 }  // namespace
 
 Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const MotionOptions& o, std::mt19937& rng,
-                    double gain) {
+                    double gain, double seconds) {
   const double trans = std::abs(u.trans);
   // The floor enters only as the gain rises above 1 (the scan fit fell): a
-  // filter that explains its scans keeps the configured noise exactly.
-  const double floor_trans = (gain - 1.0) * o.noise_floor_trans;
-  const double floor_rot = (gain - 1.0) * o.noise_floor_rot;
+  // filter that explains its scans keeps the configured noise exactly. It is
+  // a random walk: its variance grows with the time between scans, so a
+  // 40 Hz scanner's particles spread as fast per second as a 4 Hz one's, not
+  // sqrt(10) times faster. Scans further apart than noise_floor_interval get
+  // the whole floor and no more: there the alphas, which grow with the
+  // increment, carry the noise.
+  const double share = std::sqrt(std::clamp(seconds / o.noise_floor_interval, 0.0, 1.0));
+  const double floor_trans = (gain - 1.0) * o.noise_floor_trans * share;
+  const double floor_rot = (gain - 1.0) * o.noise_floor_rot * share;
   const double sd_rot1 = gain * (o.alpha_rot_from_rot * std::abs(u.rot1) + o.alpha_rot_from_trans * trans);
   const double sd_trans =
       gain * (o.alpha_trans_from_trans * trans + o.alpha_trans_from_rot * (std::abs(u.rot1) + std::abs(u.rot2))) +

@@ -30,11 +30,13 @@ struct OdometryIncrement {
 // The increment from odometry pose `from` to `to` (odometry frame).
 OdometryIncrement decompose(const Pose2& from, const Pose2& to);
 
-// `pose` moved by the increment with noise drawn from `rng`. The standard
-// deviations are multiplied by `gain` (>= 1: adaptive noise), and (gain - 1)
-// x noise_floor_trans / _rot is added, so that a zero increment still
-// spreads the particles when the scans say the pose is off.
+// `pose` moved by the increment, which took `seconds`, with noise drawn from
+// `rng`. The standard deviations are multiplied by `gain` (>= 1: adaptive
+// noise), and (gain - 1) x noise_floor_trans / _rot is added, so that a zero
+// increment still spreads the particles when the scans say the pose is off;
+// times `sqrt(seconds / noise_floor_interval)` for increments shorter than
+// that interval (a random walk's spread, the same per second at any scan rate).
 Pose2 sample_motion(const Pose2& pose, const OdometryIncrement& u, const MotionOptions& options, std::mt19937& rng,
-                    double gain = 1.0);
+                    double gain = 1.0, double seconds = 0.0);
 
 }  // namespace slamer

@@ -124,6 +124,7 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   keeping_places_ = false;
   rival_place_ = false;
   held_motion_.reset();
+  held_seconds_ = 0.0;
   place_scan_due_ = false;
   increment_.reset();
   last_pose_.reset();  // the learned correction stays: it belongs to the robot, not the pose
@@ -131,7 +132,7 @@ void ParticleFilter::initialize(const Pose2& mean, const std::vector<double>& si
   odometry_forward_.reset();
 }
 
-void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
+void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to, double seconds) {
   const OdometryIncrement raw = decompose(odom_from, odom_to);
   if (increment_) {  // several predictions before one update: sum them
     increment_ =
@@ -142,29 +143,35 @@ void ParticleFilter::predict(const Pose2& odom_from, const Pose2& odom_to) {
   odometry_forward_ = odometry_forward_.value_or(0.0) + between(odom_from, odom_to).x;
   if (keeping_places_ && !global_) {
     held_motion_ = compose(held_motion_.value_or(Pose2{}), between(odom_from, odom_to));
+    held_seconds_ += seconds;
     if (std::hypot(held_motion_->x, held_motion_->y) >= kPlaceMove || std::abs(held_motion_->theta) >= kPlaceTurn) {
-      move_particles(decompose(Pose2{}, *held_motion_));
-      held_motion_.reset();
+      move_held_particles();
       place_scan_due_ = true;
     }
   } else {
-    move_particles(raw);
+    move_particles(raw, seconds);
   }
   const OdometryIncrement u = correction_.correct(raw);
   for (Particle& c : challengers_) {
     // They search: a zero increment (the robot standing) still moves them about.
-    c.pose = sample_motion(c.pose, u, options_.motion, challenger_rng_, options_.motion.noise_gain_max);
+    c.pose = sample_motion(c.pose, u, options_.motion, challenger_rng_, options_.motion.noise_gain_max, seconds);
   }
   if (challenger_track_) {
     challenger_track_ = compose(*challenger_track_, between(odom_from, odom_to));
   }
 }
 
-void ParticleFilter::move_particles(const OdometryIncrement& raw) {
+void ParticleFilter::move_particles(const OdometryIncrement& raw, double seconds) {
   const OdometryIncrement u = correction_.correct(raw);
   for (Particle& p : particles_) {
-    p.pose = sample_motion(p.pose, u, options_.motion, rng_, noise_gain_);
+    p.pose = sample_motion(p.pose, u, options_.motion, rng_, noise_gain_, seconds);
   }
+}
+
+void ParticleFilter::move_held_particles() {
+  move_particles(decompose(Pose2{}, *held_motion_), held_seconds_);
+  held_motion_.reset();
+  held_seconds_ = 0.0;
 }
 
 void ParticleFilter::diffuse(double seconds) {
@@ -295,8 +302,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
     rival_place_ = rivals_in(places_of(particles_, places), places).size() > 1;
     keeping_places_ = global_ || rival_place_;  // decided: ordinary resampling from here on
     if (!keeping_places_ && held_motion_) {
-      move_particles(decompose(Pose2{}, *held_motion_));
-      held_motion_.reset();
+      move_held_particles();
     }
   }
   double mean_beam = 0.0;

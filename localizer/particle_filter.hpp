@@ -101,8 +101,9 @@ class ParticleFilter {
   // that is a guess (read back after a restart), not one given by hand.
   void require_confirmation();
   bool initialized() const { return !particles_.empty(); }
-  // Moves every particle by the odometry increment from `odom_from` to `odom_to`.
-  void predict(const Pose2& odom_from, const Pose2& odom_to);
+  // Moves every particle by the odometry increment from `odom_from` to
+  // `odom_to`, which took `seconds` (the motion noise's floor grows with it).
+  void predict(const Pose2& odom_from, const Pose2& odom_to, double seconds);
   // Without odometry: moves every particle by zero-mean noise of the distance
   // and turn the robot can make in `seconds` (no_odometry_speed, _turn_rate).
   void diffuse(double seconds);
@@ -191,7 +192,8 @@ class ParticleFilter {
   // The along-track evidence of this scan at the estimate (along_track.hpp).
   void update_along_track(const ScanPoints& points, const UpdateResult& result, int64_t utime);
   // The odometry increment, corrected (correction_), applied to every particle with noise.
-  void move_particles(const OdometryIncrement& raw);
+  void move_particles(const OdometryIncrement& raw, double seconds);
+  void move_held_particles();  // by held_motion_, which is then cleared
   PlaceOptions place_options() const;
   // Keeping places, after a weighed scan: each of `places` (found before it
   // weighed, their log weights then) gains the scan's likelihood at the pose
@@ -275,6 +277,7 @@ class ParticleFilter {
   // again, and counted each time it would add the same evidence for a place
   // at every scan (1.2 nats a scan for a look-alike on Wean log 3's first 4 s).
   std::optional<Pose2> held_motion_;
+  double held_seconds_ = 0.0;  // the time held_motion_ took
   bool place_scan_due_ = false;
   OdometryCorrection correction_;
   std::optional<OdometryIncrement> increment_;  // odometry since the last update (raw), for the correction

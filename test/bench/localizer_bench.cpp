@@ -74,7 +74,7 @@ void run(benchmark::State& state, int particles, int beams, LocalizerMode mode, 
   const LaserScan scan = f.scan(beams, pose);
   const LineObjectSet objects = LineRecognizer{RecognizerOptions{}}.recognize(scan);
   for (auto _ : state) {
-    filter.predict({0.0, 0.0, 0.0}, {0.02, 0.0, 0.0});
+    filter.predict({0.0, 0.0, 0.0}, {0.02, 0.0, 0.0}, 0.025);
     benchmark::DoNotOptimize(filter.update(scan, &objects));
   }
   state.counters["beam_evaluations_per_s"] =

@@ -146,7 +146,7 @@ TEST(LocalMatchInTheFilter, AScanThatFitsTwoPlacesAboutEquallyPutsParticlesAtBot
     scan.utime = 1'000'000 + k * 100'000;
     ASSERT_EQ(filter.update(scan, nullptr).matched, 0);
   }
-  filter.predict({0.0, 0.0, 0.0}, {0.3, 0.0, 0.0});
+  filter.predict({0.0, 0.0, 0.0}, {0.3, 0.0, 0.0}, 0.1);
   scan.utime += 100'000;
   const UpdateResult result = filter.update(scan, nullptr);
   EXPECT_EQ(result.matched, 50);

@@ -414,7 +414,7 @@ TEST(ParticleFilter, StatusSaysWhenItIsUncertainOrLost) {
   std::vector<LocalizerStatus> statuses;
   for (int i = 0; i < 15; ++i) {
     statuses.push_back(filter.update(here, nullptr).estimate.status);
-    filter.predict({}, {});  // standing still: the motion model adds no noise
+    filter.predict({}, {}, 0.1);  // standing still: the motion model adds no noise
   }
   EXPECT_EQ(statuses.front(), LocalizerStatus::kUncertain);
   EXPECT_EQ(statuses.back(), LocalizerStatus::kOk);

@@ -202,9 +202,10 @@ class FilterLoop : public SimulatorSink {
       return;
     }
     if (last_odometry_.has_value()) {
-      filter_->predict(*last_odometry_, odometry_);
+      filter_->predict(*last_odometry_, odometry_, static_cast<double>(scan.utime - last_scan_utime_) * 1e-6);
     }
     last_odometry_ = odometry_;
+    last_scan_utime_ = scan.utime;
     const LineObjectSet objects = recognizer_.recognize(scan);
     const UpdateResult result = filter_->update(scan, &objects);
     for (const LineObject& o : result.semantic.objects) {
@@ -231,6 +232,7 @@ class FilterLoop : public SimulatorSink {
   Pose2 odometry_;
   bool have_odometry_ = false;
   std::optional<Pose2> last_odometry_;
+  int64_t last_scan_utime_ = 0;
   Pose2 truth_;
   std::vector<double> errors_;
   double max_probability_error_ = 0.0;

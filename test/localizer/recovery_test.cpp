@@ -51,7 +51,7 @@ std::vector<Scan> stand_still(const SmallWorld& w, double adopt_time, double awa
     const bool away_now = t >= 1.0 && t < 1.0 + away;
     LaserScan scan = away_now ? elsewhere : home;
     scan.utime = 1'000'000 + k * kScanPeriod;
-    filter.predict({}, {});
+    filter.predict({}, {}, kScanPeriod * 1e-6);
     const UpdateResult r = filter.update(scan, nullptr);
     scans.push_back({t, away_now, r.estimate.pose, r.estimate.status, r.adopted});
   }
@@ -174,7 +174,7 @@ ProbationRun kidnap(const SemanticMap& map, const Pose2& home, const Pose2& kidn
     const double t = static_cast<double>(k) * kScanPeriod * 1e-6;
     LaserScan scan = t < 1.0 ? at_home : there_scan;
     scan.utime = 1'000'000 + k * kScanPeriod;
-    filter.predict({}, {});
+    filter.predict({}, {}, kScanPeriod * 1e-6);
     const UpdateResult r = filter.update(scan, nullptr);
     const PoseEstimate& e = r.estimate;
     const bool there = distance(e.pose, kidnapped) < 0.1 || distance(e.pose, twin) < 0.1;
@@ -297,7 +297,7 @@ GlobalRun drive_after_global(const SemanticMap& map, const std::vector<LaserScan
     if (k > 0) {
       const Pose2 before = odometry;
       odometry = compose(odometry, between(driven_to(k - 1), truth));
-      filter.predict(before, odometry);
+      filter.predict(before, odometry, kScanPeriod * 1e-6);
     }
     e = filter.update(scans[static_cast<std::size_t>(k)], nullptr).estimate;
     if (e.status == LocalizerStatus::kOk && run.ok_at < 0.0) {

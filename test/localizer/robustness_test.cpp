@@ -189,10 +189,13 @@ TEST(Robustness, KidnappedItSaysSoThenRelocalizesAndSaysOkAgain) {
 }
 
 // What a look-alike place gives: the scan fits, but only in part, for long.
-// Here 35 % of the beams end at random short ranges from 4 s on (the pose
-// stays about right): the fit falls to about 0.54, which the 10-scan smoothing
-// mostly takes for good enough (347 of 475 scans OK after 20 s without the
-// sustained fit); the fit over status.fit_sustained_time (10 s) does not.
+// Here 38 % of the beams end at random short ranges from 4 s on (the pose
+// stays about right): the fit falls to about 0.57, half-way between
+// status.fit_uncertain (0.5) and fit_sustained (0.65), which the 10-scan
+// smoothing mostly takes for good enough; the fit over
+// status.fit_sustained_time (10 s) does not. (With 35 % it was 0.53 while the
+// 40 Hz scans spread the particles by the whole floor each; with the floor's
+// share for 0.025 s the pose is closer and 35 % fits 0.61, at the bar.)
 TEST(Robustness, AScanThatFitsOnlyInPartForLongSaysUncertain) {
   const SmallWorld w;
   LocalizerOptions options = starting_at(w);
@@ -205,7 +208,7 @@ TEST(Robustness, AScanThatFitsOnlyInPartForLongSaysUncertain) {
     std::uniform_real_distribution<float> clutter(0.3f, 1.5f);
     std::uniform_real_distribution<double> pick(0.0, 1.0);
     for (float& r : scan->ranges) {
-      r = pick(rng) < 0.35 ? clutter(rng) : r;
+      r = pick(rng) < 0.38 ? clutter(rng) : r;
     }
   };
   drive(w, realistic_odometry(), &loop);
@@ -481,7 +484,7 @@ TEST(Robustness, AnEstimateThatTravelsFarFromWhatTheOdometrySaysIsUncertain) {
   std::cout << "[ measured ] wheels slipping 3 s: max error " << max_error
             << " m; not OK over 9-16 s: " << uncertain_with << " of " << window
             << " scans with the odometry agreement, " << uncertain_without << " without\n";
-  EXPECT_LT(max_error, 0.4);                   // the scans held the pose (0.30 m)
+  EXPECT_LT(max_error, 0.4);                   // the scans held the pose (0.31 m; 0.28 with the floor per scan)
   EXPECT_LT(uncertain_without, window / 10);   // and the fit alone stays OK
   EXPECT_GT(uncertain_with, 9 * window / 10);  // the disagreement does not
 }

@@ -12,6 +12,7 @@
 #include "localizer/localizer_messages.hpp"
 #include "localizer/motion_model.hpp"
 #include "localizer/odometry_agreement.hpp"
+#include "localizer/particle_filter.hpp"
 #include "localizer/scan_fit.hpp"
 #include "slamer/process_status_t.hpp"
 #include "test/localizer/options_error.hpp"
@@ -136,18 +137,70 @@ TEST(ScanFit, FractionOfBeamsOnTheMapsObstacles) {
   EXPECT_EQ(scan_fit(obstacles, {}, {}, 0.1), 0.0);
 }
 
-TEST(MotionModel, ZeroIncrementSpreadsOnlyWhenTheGainIsUp) {
+// The floor per scan is for scans noise_floor_interval (0.25 s) or more
+// apart; closer ones each get sqrt(dt / 0.25 s) of it, so that a 40 Hz
+// scanner does not spread the particles sqrt(10) times as fast as a 4 Hz one.
+TEST(MotionModel, ZeroIncrementSpreadsOnlyWhenTheGainIsUpAndWithTheTimeBetweenScans) {
   LocalizerOptions o;
   std::mt19937 rng(2);
   const OdometryIncrement zero{};
   double spread_rest = 0.0;
-  double spread_up = 0.0;
+  double heading_slow = 0.0;
+  double heading_fast = 0.0;
+  double position_slow = 0.0;
   for (int i = 0; i < 2000; ++i) {
-    spread_rest = std::max(spread_rest, std::abs(sample_motion({}, zero, o.motion, rng, 1.0).theta));
-    spread_up += std::pow(sample_motion({}, zero, o.motion, rng, 4.0).theta, 2);
+    spread_rest = std::max(spread_rest, std::abs(sample_motion({}, zero, o.motion, rng, 1.0, 2.0).theta));
+    const Pose2 slow = sample_motion({}, zero, o.motion, rng, 4.0, 2.0);
+    heading_slow += slow.theta * slow.theta;
+    position_slow += slow.x * slow.x + slow.y * slow.y;
+    heading_fast += std::pow(sample_motion({}, zero, o.motion, rng, 4.0, 0.025).theta, 2);
   }
   EXPECT_EQ(spread_rest, 0.0);  // a filter that explains its scans keeps the configured noise
-  EXPECT_NEAR(std::sqrt(spread_up / 2000), 3.0 * o.motion.noise_floor_rot, 0.1 * 3.0 * o.motion.noise_floor_rot);
+  const double rot = 3.0 * o.motion.noise_floor_rot;
+  EXPECT_NEAR(std::sqrt(heading_slow / 2000), rot, 0.1 * rot);
+  EXPECT_NEAR(std::sqrt(heading_fast / 2000), rot * std::sqrt(0.1), 0.1 * rot * std::sqrt(0.1));
+  const double trans = 3.0 * o.motion.noise_floor_trans;
+  EXPECT_NEAR(std::sqrt(position_slow / 2000), trans, 0.1 * trans);
+  const Pose2 backwards = sample_motion({1.0, 2.0, 0.5}, zero, o.motion, rng, 4.0, -1.0);  // time went backwards
+  EXPECT_EQ(backwards.x, 1.0);
+  EXPECT_EQ(backwards.y, 2.0);
+  EXPECT_EQ(backwards.theta, 0.5);
+}
+
+// Through the filter: a scan that fits nowhere near the estimate raises the
+// gain to its largest, and a zero increment then spreads the cloud's heading
+// by the floor's share of the time the increment took, 0.025 s or 0.25 s.
+TEST(MotionModel, TheFiltersPredictionSpreadsAZeroIncrementByTheFloorOfItsTime) {
+  const SmallWorld w;
+  LocalizerOptions o;
+  o.mode = LocalizerMode::kLfm;
+  o.particles = 4000;
+  o.lfm.beam_step = 4;
+  const auto heading_variance = [](const std::vector<Particle>& particles) {
+    double sum = 0.0;
+    double squares = 0.0;
+    for (const Particle& p : particles) {
+      sum += p.pose.theta;
+      squares += p.pose.theta * p.pose.theta;
+    }
+    const double n = static_cast<double>(particles.size());
+    return squares / n - (sum / n) * (sum / n);
+  };
+  for (const double seconds : {0.025, 0.25}) {
+    ParticleFilter filter(w.map, o, w.robot.lidar.mount);
+    filter.initialize({2.0, 3.0, 0.0}, {0.001, 0.001, 0.0001});
+    LaserScan elsewhere = w.scan_at({8.5, 1.2, 2.5});
+    elsewhere.utime = 1'000'000;
+    const UpdateResult r = filter.update(elsewhere, nullptr);
+    ASSERT_LT(r.fit, o.status.fit_lost);
+    ASSERT_DOUBLE_EQ(r.noise_gain, o.motion.noise_gain_max);
+    const double before = heading_variance(filter.particles());
+    filter.predict({}, {}, seconds);
+    const double added = std::sqrt(heading_variance(filter.particles()) - before);
+    const double expected = (o.motion.noise_gain_max - 1.0) * o.motion.noise_floor_rot *
+                            std::sqrt(std::min(seconds / o.motion.noise_floor_interval, 1.0));
+    EXPECT_NEAR(added, expected, 0.05 * expected) << seconds << " s";
+  }
 }
 
 // The motion model's heavy tail: while the base moves, heading_slip_fraction
@@ -198,6 +251,19 @@ TEST(MotionOptions, AHeadingSlipOutOfRangeIsRefusedWithItsKey) {
         << bad;
     EXPECT_NE(error_of(std::string("motion: {heading_slip_sigma: ") + bad + "}\n").find("'motion.heading_slip_sigma'"),
               std::string::npos)
+        << bad;
+  }
+}
+
+// The floor's interval divides the time between scans: zero, negative or not
+// a number is refused with its key.
+TEST(MotionOptions, AFloorIntervalThatIsNotAPositiveTimeIsRefusedWithItsKey) {
+  const auto error_of = localizer_options_error;
+  EXPECT_EQ(error_of("motion: {noise_floor_interval: 0.1}\n"), "");
+  for (const char* bad : {"0", "-0.25", "nan", "inf", "soon"}) {
+    EXPECT_NE(
+        error_of(std::string("motion: {noise_floor_interval: ") + bad + "}\n").find("'motion.noise_floor_interval'"),
+        std::string::npos)
         << bad;
   }
 }
