@@ -321,9 +321,9 @@ UpdateResult LocalizerNode::process(const Pending& pending) {
   } else {
     const std::optional<Pose2> odometry = odometry_at(utime);
     if (last_odometry_used_) {
-      // last_odometry_used_ was taken at the last processed scan's time.
-      filter_.predict(*last_odometry_used_, *odometry,
-                      last_processed_utime_ ? std::max(0.0, seconds(utime - *last_processed_utime_)) : 0.0);
+      // last_odometry_used_ was taken at the last processed scan's time (the
+      // two are set and reset together); the motion model takes a negative time as 0.
+      filter_.predict(*last_odometry_used_, *odometry, seconds(utime - *last_processed_utime_));
     }
     last_odometry_used_ = odometry;
   }
