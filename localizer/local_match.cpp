@@ -9,9 +9,9 @@ namespace slamer {
 
 namespace {
 
-// The grid's fast path: the scan thinned once, then each pose's points placed
-// and looked up by the field's vectorised sum (field_log_likelihood thins as
-// it goes, as the refinement's few poses need).
+// The grid's fast path: the scan thinned once, then each heading's points
+// placed in cells and summed at every shift (field_log_likelihood thins as it
+// goes, as the refinement's few poses need).
 ScanPoints thin(const ScanPoints& points, std::size_t step) {
   ScanPoints thinned;
   for (std::size_t i = 0; i < points.x.size(); i += step) {
@@ -74,7 +74,10 @@ LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points,
       std::max<std::size_t>(1, points.x.size() / static_cast<std::size_t>(std::max(window.beams, 1)));
   const Pose2 start = sensor_in_cells(g, predicted, mount);  // cells, rad
   const double shift_cells = window.shift / g.resolution;
-  const double step_cells = std::max(window.shift_step / g.resolution, 1e-3);
+  // The grid's translations are whole cells (the nearest number of them to
+  // the step, at least one), so each heading's points are placed once and
+  // only moved: the refinement below works under a cell.
+  const int step_cells = std::max(1, static_cast<int>(std::lround(std::min(window.shift_step / g.resolution, 1e6))));
   const double turn_step = std::max(window.turn_step, 1e-4);
   const int shifts = static_cast<int>(std::floor(shift_cells / step_cells + 1e-9));
   const int turns = static_cast<int>(std::floor(window.turn / turn_step + 1e-9));
@@ -86,16 +89,14 @@ LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points,
   const ScanPoints thinned = thin(points, step);
   for (int k = -turns; k <= turns; ++k) {
     const double theta = start.theta + k * turn_step;
-    const float c = static_cast<float>(std::cos(theta));
-    const float s = static_cast<float>(std::sin(theta));
+    const LikelihoodField::CellScan placed = field.place_cells(
+        thinned.x.data(), thinned.y.data(), thinned.x.size(), static_cast<float>(std::cos(theta)),
+        static_cast<float>(std::sin(theta)), static_cast<float>(start.x), static_cast<float>(start.y));
     for (int iy = -shifts; iy <= shifts; ++iy) {
       for (int ix = -shifts; ix <= shifts; ++ix) {
-        const double x = start.x + ix * step_cells;
-        const double y = start.y + iy * step_cells;
         grid[static_cast<std::size_t>(index(k, iy, ix))] = {
-            {x, y, theta},
-            field.sum_placed(thinned.x.data(), thinned.y.data(), thinned.x.size(), c, s, static_cast<float>(x),
-                             static_cast<float>(y))};
+            {start.x + ix * step_cells, start.y + iy * step_cells, theta},
+            field.sum_shifted(placed, ix * step_cells, iy * step_cells)};
       }
     }
   }

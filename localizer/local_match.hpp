@@ -23,7 +23,7 @@ namespace slamer {
 struct LocalMatchWindow {
   double shift = 0.5;        // [m] the search reaches this far in x and y from the prediction
   double turn = 0.5;         // [rad] and this far in heading
-  double shift_step = 0.1;   // [m] coarse grid
+  double shift_step = 0.1;   // [m] coarse grid (rounded to whole cells of the map)
   double turn_step = 0.025;  // [rad]
   int beams = 90;            // the scan thinned to about this many end points
   // The runner-up is the best local maximum of the grid at least this far

@@ -19,9 +19,6 @@ namespace {
 constexpr double kPlaceMove = 0.2;   // [m]
 constexpr double kPlaceTurn = 0.2;   // [rad]
 constexpr double kClearance = 0.15;  // [m] global proposals keep the robot's centre this far from obstacles
-// The LFM field keeps its levels row-major up to this many cells (a byte
-// each: 200 m x 200 m at 5 cm), for the beams' lookups.
-constexpr std::size_t kDenseCellsMax = std::size_t{1} << 24;
 
 // How far the map's distance fields must reach: the LFM's likelihood field
 // and SLAMER's prior, which treats everything beyond 3 sigma_d as equally far.
@@ -48,7 +45,7 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
       mount_(lidar_mount),
       geometry_(map.geometry),
       obstacles_(std::make_shared<const DistanceField>(obstacle_distance_field(map, field_reach(options)))),
-      field_(obstacles_, options.lfm, kDenseCellsMax),
+      field_(obstacles_, options.lfm, kDenseFieldCellsMax),
       free_distance_(std::make_shared<const DistanceField>(free_space_distance_field(map, field_reach(options)))),
       free_label_distance_(
           options.slamer.free_space_margin > 0.0 || !options.slamer.free_space_class_margins.empty()

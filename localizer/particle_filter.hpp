@@ -83,6 +83,10 @@ struct UpdateResult {
 
 class ParticleFilter {
  public:
+  // The LFM field keeps its levels row-major up to this many cells (a byte
+  // each: 200 m x 200 m at 5 cm), for the beams' lookups.
+  static constexpr std::size_t kDenseFieldCellsMax = std::size_t{1} << 24;
+
   // Precomputes the likelihood and distance fields of the map. Throws
   // std::invalid_argument for options that cannot work (e.g. no particles).
   // Copies share the (immutable) fields.

@@ -149,6 +149,76 @@ double LikelihoodField::sum_placed(const float* x, const float* y, std::size_t n
       [&](int32_t key) { return f.levels.tiles[key >> kCellBits][key & ((1 << kCellBits) - 1)]; });
 }
 
+LikelihoodField::CellScan LikelihoodField::place_cells(const float* x, const float* y, std::size_t n, float c, float s,
+                                                       float tx, float ty) const {
+  // Far off the grid a cell only has to stay off it under any shift a search
+  // makes, and its int32 arithmetic must not overflow.
+  constexpr float kFar = 16777216.0f;  // 2^24
+  const auto cell = [&](float g) {
+    return g >= -kFar && g <= kFar ? static_cast<int32_t>(std::floor(g)) : static_cast<int32_t>(-kFar);
+  };
+  CellScan scan;
+  scan.x.resize(n);
+  scan.y.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    scan.x[i] = cell(c * x[i] - s * y[i] + tx);
+    scan.y[i] = cell(s * x[i] + c * y[i] + ty);
+  }
+  if (n == 0) {
+    return scan;
+  }
+  const auto [min_x, max_x] = std::minmax_element(scan.x.begin(), scan.x.end());
+  const auto [min_y, max_y] = std::minmax_element(scan.y.begin(), scan.y.end());
+  scan.min_x = *min_x;
+  scan.max_x = *max_x;
+  scan.min_y = *min_y;
+  scan.max_y = *max_y;
+  const int64_t width = geometry().width;
+  const int64_t height = geometry().height;
+  // Keys of cells within a grid's size of the grid, as any shift that puts the
+  // whole scan on it leaves them: |key| < 3 x the dense size < 2^31.
+  if (dense_levels_ && scan.min_x > -width && scan.max_x < 2 * width && scan.min_y > -height &&
+      scan.max_y < 2 * height) {
+    scan.keys.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      scan.keys[i] = static_cast<int32_t>(scan.y[i] * width + scan.x[i]);
+    }
+  }
+  return scan;
+}
+
+double LikelihoodField::sum_shifted(const CellScan& scan, int32_t dx, int32_t dy) const {
+  const Cells f = cells();
+  const int64_t width = geometry().width;
+  const int64_t height = geometry().height;
+  const bool on_grid = int64_t{scan.min_x} + dx >= 0 && int64_t{scan.max_x} + dx < width &&
+                       int64_t{scan.min_y} + dy >= 0 && int64_t{scan.max_y} + dy < height;
+  if (on_grid && !scan.keys.empty()) {
+    const int32_t* keys = scan.keys.data();
+    const uint8_t* levels = dense_levels_->data();
+    const int32_t shift = static_cast<int32_t>(dy * width + dx);
+    return sum_terms(scan.keys.size(), [&](std::size_t i) { return f.table[levels[keys[i] + shift]]; });
+  }
+  if (dense_levels_) {
+    const uint8_t* levels = dense_levels_->data();
+    return sum_terms(scan.x.size(), [&](std::size_t i) {
+      const int64_t cx = int64_t{scan.x[i]} + dx;
+      const int64_t cy = int64_t{scan.y[i]} + dy;
+      return static_cast<uint64_t>(cx) < static_cast<uint64_t>(width) &&
+                     static_cast<uint64_t>(cy) < static_cast<uint64_t>(height)
+                 ? f.table[levels[cy * width + cx]]
+                 : f.off_map;
+    });
+  }
+  return sum_terms(scan.x.size(), [&](std::size_t i) {
+    const int64_t cx = int64_t{scan.x[i]} + dx;
+    const int64_t cy = int64_t{scan.y[i]} + dy;
+    return cx >= 0 && cy >= 0 && cx < width && cy < height
+               ? f.table[f.levels(static_cast<int>(cx), static_cast<int>(cy))]
+               : f.off_map;
+  });
+}
+
 float LikelihoodField::log_likelihood_at(const Eigen::Vector2d& world) const {
   const std::optional<Cell> cell = geometry().cell_at(world);
   return cell ? log_likelihood(cell->x, cell->y) : off_map_;

@@ -86,6 +86,27 @@ class LikelihoodField {
   // translation (tx, ty) [cells]: the same as summing cells()(c x - s y + tx,
   // s x + c y + ty), four points at a time where it is one lookup each.
   double sum_placed(const float* x, const float* y, std::size_t n, float c, float s, float tx, float ty) const;
+  // A scan placed on the grid once, in whole cells, to be summed at many
+  // whole-cell shifts: the inner loop of a correlative search (Olson,
+  // "Real-time correlative scan matching", ICRA 2009), where a heading's
+  // points are rotated once and each translation of the search's grid only
+  // moves them by whole cells.
+  struct CellScan {
+    std::vector<int32_t> x, y;  // [cells] each point's cell (clamped to +-2^24 far off the grid)
+    // y * width + x per point where the field is dense and every cell is within
+    // a grid's size of the grid; empty otherwise.
+    std::vector<int32_t> keys;
+    int32_t min_x = 0, max_x = -1, min_y = 0, max_y = -1;  // the cells' bounds (empty: max < min)
+  };
+  // The cells of the n points (x[i], y[i]) [cells, sensor frame] placed on the
+  // grid by the rotation (c, s) and the translation (tx, ty) [cells], as
+  // sum_placed places them (a NaN point falls off the grid).
+  CellScan place_cells(const float* x, const float* y, std::size_t n, float c, float s, float tx, float ty) const;
+  // Sum of the log-likelihoods of the cells of `scan` moved by (dx, dy)
+  // [cells]: sum_placed of the same points translated by (tx + dx, ty + dy)
+  // but for a point within a float's rounding of a cell's edge. Where the
+  // moved scan lies wholly on a dense grid, a lookup per point and no checks.
+  double sum_shifted(const CellScan& scan, int32_t dx, int32_t dy) const;
   Cells cells() const {
     return {distances_->levels(), table_.data(), off_map_, static_cast<float>(geometry().width),
             static_cast<float>(geometry().height)};

@@ -119,11 +119,12 @@ void BM_ScanFit(benchmark::State& state) {
 BENCHMARK(BM_ScanFit)->Unit(benchmark::kMicrosecond);
 
 // One match_locally of a 1081-beam scan taken at (20, 8.25, 0), every beam's
-// end point given, from `predicted`.
+// end point given, from `predicted`, on a field kept as the filter keeps it.
 void match_from(benchmark::State& state, const LocalMatchWindow& window, const Pose2& predicted) {
   const Fixture& f = fixture();
   const LocalizerOptions options;
-  const LikelihoodField field(std::make_shared<const DistanceField>(obstacle_distance_field(f.map, 1.2)), options.lfm);
+  const LikelihoodField field(std::make_shared<const DistanceField>(obstacle_distance_field(f.map, 1.2)), options.lfm,
+                              ParticleFilter::kDenseFieldCellsMax);
   const ScanPoints points = f.points(f.scan(1081, {20.0, 8.25, 0.0}));
   for (auto _ : state) {
     benchmark::DoNotOptimize(match_locally(field, points, f.robot.lidar.mount, predicted, window));

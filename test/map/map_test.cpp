@@ -217,6 +217,67 @@ TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMapTiledOr
   EXPECT_GT(off_map, 100);  // both branches are exercised
 }
 
+TEST(LikelihoodField, PlacedCellsShiftedByWholeCellsSumAsThePointsPlacedThereTiledOrDense) {
+  // 100 x 70 cells: tiles cut at 32 in both axes, a partial tile at each far edge.
+  GridGeometry g{100, 70, 0.05, {}};
+  std::mt19937 rng(11);
+  std::vector<uint8_t> targets(g.size(), 0);
+  std::uniform_int_distribution<std::size_t> any_cell(0, g.size() - 1);
+  for (int k = 0; k < 60; ++k) {
+    targets[any_cell(rng)] = 1;
+  }
+  const auto distances = std::make_shared<const DistanceField>(g, targets, 1.5);
+  const LikelihoodField tiled(distances, LikelihoodFieldOptions{});
+  const LikelihoodField dense(distances, LikelihoodFieldOptions{}, g.size());
+  const float c = std::cos(0.7f), s = std::sin(0.7f), tx = 50.25f, ty = 35.5f;
+  // Points that land at least 0.01 cell from a cell's edge, so that a float's
+  // rounding cannot tell placing then shifting from placing there; a scan
+  // within 20 cells of the centre, and one reaching 30 cells beyond every edge.
+  const auto clear_of_edges = [&](float x, float y) {
+    const float gx = c * x - s * y + tx, gy = s * x + c * y + ty;
+    return std::abs(gx - std::round(gx)) > 0.01f && std::abs(gy - std::round(gy)) > 0.01f;
+  };
+  const auto points = [&](float reach) {
+    std::uniform_real_distribution<float> coordinate(-reach, reach);
+    std::vector<float> x, y;
+    while (x.size() < 150) {
+      const float px = coordinate(rng), py = coordinate(rng);
+      if (clear_of_edges(px, py)) {
+        x.push_back(px);
+        y.push_back(py);
+      }
+    }
+    return std::pair{x, y};
+  };
+  int fast = 0, checked = 0;
+  for (const auto& [x, y] : {points(20.0f), points(80.0f)}) {
+    for (const LikelihoodField* field : {&tiled, &dense}) {
+      const LikelihoodField::CellScan scan = field->place_cells(x.data(), y.data(), x.size(), c, s, tx, ty);
+      ASSERT_EQ(scan.x.size(), x.size());
+      for (const int dy : {-31, -6, 0, 4, 30}) {
+        for (const int dx : {-45, -7, 0, 2, 44}) {
+          const double expected = field->sum_placed(x.data(), y.data(), x.size(), c, s, tx + static_cast<float>(dx),
+                                                    ty + static_cast<float>(dy));
+          EXPECT_NEAR(field->sum_shifted(scan, dx, dy), expected, 1e-9) << dx << ", " << dy;
+          const bool on_grid =
+              scan.min_x + dx >= 0 && scan.max_x + dx < g.width && scan.min_y + dy >= 0 && scan.max_y + dy < g.height;
+          (on_grid && !scan.keys.empty() ? fast : checked) += 1;
+        }
+      }
+    }
+  }
+  EXPECT_GT(fast, 5);  // the dense fast path and the checked paths are both exercised
+  EXPECT_GT(checked, 50);
+  // A point far off (or NaN) stays off the grid under any shift; no points sum to 0.
+  const float far_x[] = {1e9f, std::nanf(""), 10.0f}, far_y[] = {0.0f, 0.0f, 1e9f};
+  const LikelihoodField::CellScan far = dense.place_cells(far_x, far_y, 3, 1.0f, 0.0f, 0.0f, 0.0f);
+  for (const int shift : {0, 1000000}) {
+    EXPECT_DOUBLE_EQ(dense.sum_shifted(far, shift, shift), 3.0 * dense.off_map_log_likelihood());
+    EXPECT_DOUBLE_EQ(tiled.sum_shifted(far, -shift, 0), 3.0 * tiled.off_map_log_likelihood());
+  }
+  EXPECT_EQ(dense.sum_shifted(dense.place_cells(far_x, far_y, 0, c, s, tx, ty), 3, 4), 0.0);
+}
+
 // A 4x3 map image, top row first, as map_server reads it.
 void write_occupancy_pgm(const std::string& path) {
   cv::Mat image(3, 4, CV_8UC1);
