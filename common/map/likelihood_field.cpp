@@ -174,11 +174,12 @@ LikelihoodField::CellScan LikelihoodField::place_cells(const float* x, const flo
   scan.min_y = *min_y;
   scan.max_y = *max_y;
   const int64_t width = geometry().width;
-  const int64_t height = geometry().height;
-  // Keys of cells within a grid's size of the grid, as any shift that puts the
-  // whole scan on it leaves them: |key| < 3 x the dense size < 2^31.
-  if (dense_levels_ && scan.min_x > -width && scan.max_x < 2 * width && scan.min_y > -height &&
-      scan.max_y < 2 * height) {
+  // Keys where every one is an int32 (a key plus a shift that puts its cell on
+  // the grid is then one too).
+  const auto fits = [](int64_t key) {
+    return key >= std::numeric_limits<int32_t>::min() && key <= std::numeric_limits<int32_t>::max();
+  };
+  if (dense_levels_ && fits(scan.min_y * width + scan.min_x) && fits(scan.max_y * width + scan.max_x)) {
     scan.keys.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       scan.keys[i] = static_cast<int32_t>(scan.y[i] * width + scan.x[i]);
@@ -193,11 +194,13 @@ double LikelihoodField::sum_shifted(const CellScan& scan, int32_t dx, int32_t dy
   const int64_t height = geometry().height;
   const bool on_grid = int64_t{scan.min_x} + dx >= 0 && int64_t{scan.max_x} + dx < width &&
                        int64_t{scan.min_y} + dy >= 0 && int64_t{scan.max_y} + dy < height;
-  if (on_grid && !scan.keys.empty()) {
+  const int64_t shift = dy * width + dx;
+  if (on_grid && !scan.keys.empty() && shift >= std::numeric_limits<int32_t>::min() &&
+      shift <= std::numeric_limits<int32_t>::max()) {
     const int32_t* keys = scan.keys.data();
     const uint8_t* levels = dense_levels_->data();
-    const int32_t shift = static_cast<int32_t>(dy * width + dx);
-    return sum_terms(scan.keys.size(), [&](std::size_t i) { return f.table[levels[keys[i] + shift]]; });
+    const auto offset = static_cast<int32_t>(shift);
+    return sum_terms(scan.keys.size(), [&](std::size_t i) { return f.table[levels[keys[i] + offset]]; });
   }
   if (dense_levels_) {
     const uint8_t* levels = dense_levels_->data();

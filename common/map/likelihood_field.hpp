@@ -93,8 +93,7 @@ class LikelihoodField {
   // moves them by whole cells.
   struct CellScan {
     std::vector<int32_t> x, y;  // [cells] each point's cell (clamped to +-2^24 far off the grid)
-    // y * width + x per point where the field is dense and every cell is within
-    // a grid's size of the grid; empty otherwise.
+    // y * width + x per point where the field is dense and every one is an int32; empty otherwise.
     std::vector<int32_t> keys;
     int32_t min_x = 0, max_x = -1, min_y = 0, max_y = -1;  // the cells' bounds (empty: max < min)
   };

@@ -164,18 +164,29 @@ TEST(LikelihoodField, HandComputedValues) {
   EXPECT_THROW(LikelihoodField(obstacles, options), std::invalid_argument);
 }
 
-TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMapTiledOrDense) {
-  // 100 x 70 cells: tiles cut at 32 in both axes, a partial tile at each far edge.
+// One likelihood field, tiled and dense, over 60 obstacle cells drawn from
+// `rng` in 100 x 70 cells: tiles cut at 32 in both axes, a partial tile at
+// each far edge.
+struct TiledAndDense {
   GridGeometry g{100, 70, 0.05, {}};
-  std::mt19937 rng(7);
+  std::shared_ptr<const DistanceField> distances;
+  LikelihoodField tiled, dense;
+};
+TiledAndDense scattered_obstacles(std::mt19937& rng) {
+  const GridGeometry g{100, 70, 0.05, {}};
   std::vector<uint8_t> targets(g.size(), 0);
   std::uniform_int_distribution<std::size_t> any_cell(0, g.size() - 1);
   for (int k = 0; k < 60; ++k) {
     targets[any_cell(rng)] = 1;
   }
   const auto distances = std::make_shared<const DistanceField>(g, targets, 1.5);
-  const LikelihoodField field(distances, LikelihoodFieldOptions{});
-  const LikelihoodField dense(distances, LikelihoodFieldOptions{}, g.size());
+  return {g, distances, LikelihoodField(distances, LikelihoodFieldOptions{}),
+          LikelihoodField(distances, LikelihoodFieldOptions{}, g.size())};
+}
+
+TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMapTiledOrDense) {
+  std::mt19937 rng(7);
+  const auto [g, distances, field, dense] = scattered_obstacles(rng);
   EXPECT_EQ(field.dense_bytes(), 0u);
   EXPECT_EQ(dense.dense_bytes(), g.size());
   EXPECT_EQ(LikelihoodField(distances, LikelihoodFieldOptions{}, g.size() - 1).dense_bytes(), 0u);
@@ -218,17 +229,8 @@ TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMapTiledOr
 }
 
 TEST(LikelihoodField, PlacedCellsShiftedByWholeCellsSumAsThePointsPlacedThereTiledOrDense) {
-  // 100 x 70 cells: tiles cut at 32 in both axes, a partial tile at each far edge.
-  GridGeometry g{100, 70, 0.05, {}};
   std::mt19937 rng(11);
-  std::vector<uint8_t> targets(g.size(), 0);
-  std::uniform_int_distribution<std::size_t> any_cell(0, g.size() - 1);
-  for (int k = 0; k < 60; ++k) {
-    targets[any_cell(rng)] = 1;
-  }
-  const auto distances = std::make_shared<const DistanceField>(g, targets, 1.5);
-  const LikelihoodField tiled(distances, LikelihoodFieldOptions{});
-  const LikelihoodField dense(distances, LikelihoodFieldOptions{}, g.size());
+  const auto [g, distances, tiled, dense] = scattered_obstacles(rng);
   const float c = std::cos(0.7f), s = std::sin(0.7f), tx = 50.25f, ty = 35.5f;
   // Points that land at least 0.01 cell from a cell's edge, so that a float's
   // rounding cannot tell placing then shifting from placing there; a scan
