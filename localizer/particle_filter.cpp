@@ -275,7 +275,7 @@ UpdateResult ParticleFilter::update(const LaserScan& scan, const LineObjectSet* 
   // Not while places are kept: its particles replace the least likely ones,
   // a rival's, with the estimate's weight.
   if (!keeping_places_) {
-    match_locally(beams.points, turn_during_sweep(scan), &result);
+    match_locally(beams, prepared_objects, turn_during_sweep(scan), &result);
   }
   if (weigh && keeping_places_ && !global_ && updated_) {
     propose_late(beams.points, &result);

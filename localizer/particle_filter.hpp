@@ -166,8 +166,11 @@ class ParticleFilter {
   // about a proposal's spread of the place, and nothing refines it while the
   // robot stands still (particle_filter_robust.cpp).
   Pose2 refined_place(const Pose2& place, const ScanPoints& points) const;
+  // Particles where the scan fits clearly better than at the prediction,
+  // unless the objects weigh against it (particle_filter_robust.cpp).
   // `sweep_turn`: how far the robot turned while the scan was taken [rad].
-  void match_locally(const ScanPoints& points, double sweep_turn, UpdateResult* result);
+  void match_locally(const PreparedScan& beams, const PreparedObjects& objects, double sweep_turn,
+                     UpdateResult* result);
   // From the odometry since the last scan and the scan's beam timing; 0 when either is unknown.
   double turn_during_sweep(const LaserScan& scan) const;
   // Puts `poses` in place of the least likely particles, with the weight of the
