@@ -202,24 +202,23 @@ double LikelihoodField::sum_shifted(const CellScan& scan, int32_t dx, int32_t dy
     const auto offset = static_cast<int32_t>(shift);
     return sum_terms(scan.keys.size(), [&](std::size_t i) { return f.table[levels[keys[i] + offset]]; });
   }
-  if (dense_levels_) {
-    const uint8_t* levels = dense_levels_->data();
+  // Point by point, off the grid at the off-map value; a dense field's cells in one load.
+  const auto sum_checked = [&](const auto& level_at) {
     return sum_terms(scan.x.size(), [&](std::size_t i) {
       const int64_t cx = int64_t{scan.x[i]} + dx;
       const int64_t cy = int64_t{scan.y[i]} + dy;
+      // Unsigned: a negative cell compares as huge, two tests instead of four.
       return static_cast<uint64_t>(cx) < static_cast<uint64_t>(width) &&
                      static_cast<uint64_t>(cy) < static_cast<uint64_t>(height)
-                 ? f.table[levels[cy * width + cx]]
+                 ? f.table[level_at(cx, cy)]
                  : f.off_map;
     });
+  };
+  if (dense_levels_) {
+    const uint8_t* levels = dense_levels_->data();
+    return sum_checked([&](int64_t cx, int64_t cy) { return levels[cy * width + cx]; });
   }
-  return sum_terms(scan.x.size(), [&](std::size_t i) {
-    const int64_t cx = int64_t{scan.x[i]} + dx;
-    const int64_t cy = int64_t{scan.y[i]} + dy;
-    return cx >= 0 && cy >= 0 && cx < width && cy < height
-               ? f.table[f.levels(static_cast<int>(cx), static_cast<int>(cy))]
-               : f.off_map;
-  });
+  return sum_checked([&](int64_t cx, int64_t cy) { return f.levels(static_cast<int>(cx), static_cast<int>(cy)); });
 }
 
 float LikelihoodField::log_likelihood_at(const Eigen::Vector2d& world) const {
