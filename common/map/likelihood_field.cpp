@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/map/placed_keys_avx2.hpp"
+
 namespace slamer {
 namespace {
 
@@ -34,7 +36,7 @@ double likelihood_field_reach(const LikelihoodFieldOptions& options) {
 }
 
 LikelihoodField::LikelihoodField(std::shared_ptr<const DistanceField> obstacles, const LikelihoodFieldOptions& options,
-                                 std::size_t dense_cells_max)
+                                 std::size_t dense_cells_max, Vectorization vectorization)
     : distances_(std::move(obstacles)) {
   const double reach = likelihood_field_reach(options);
   if (distances_ == nullptr || distances_->max_distance() < reach) {
@@ -49,11 +51,17 @@ LikelihoodField::LikelihoodField(std::shared_ptr<const DistanceField> obstacles,
     table_[static_cast<std::size_t>(level)] = static_cast<float>(std::log(hit + random));
   }
   off_map_ = static_cast<float>(std::log(random));
+  // The saturated level's hit term is 0: its log-likelihood is the off-map one, to the bit.
+  if (table_[DistanceField::kSaturated] != off_map_) {
+    throw std::logic_error("likelihood field: the saturated level must score as off the map");
+  }
+  std::copy(table_.begin(), table_.end(), table_wide_.begin());
   max_range_ = static_cast<float>(std::log(options.z_max + random));
   const GridGeometry& g = geometry();
-  // Dense keys are int32 cell indices.
-  if (g.size() <= std::min<std::size_t>(dense_cells_max, std::numeric_limits<int32_t>::max())) {
-    auto levels = std::make_shared<std::vector<uint8_t>>(g.size());
+  // Dense keys are int32 cell indices, with one past the last for off the map.
+  if (g.size() <= dense_cells_max && g.size() < std::size_t{std::numeric_limits<int32_t>::max()}) {
+    // The cell past the last is saturated: off the map scores the same.
+    auto levels = std::make_shared<std::vector<uint8_t>>(g.size() + 1, uint8_t{DistanceField::kSaturated});
     for (int y = 0; y < g.height; ++y) {
       for (int x = 0; x < g.width; ++x) {
         (*levels)[g.index(x, y)] = distances_->level(x, y);
@@ -61,6 +69,7 @@ LikelihoodField::LikelihoodField(std::shared_ptr<const DistanceField> obstacles,
     }
     dense_levels_ = std::move(levels);
   }
+  avx2_ = vectorization == Vectorization::kBest && placed_keys_avx2_available();
 }
 
 namespace {
@@ -75,12 +84,15 @@ constexpr int kCellBits = 2 * DistanceField::kTileBits;
 constexpr int32_t kOffMap = -1;
 
 // The sum of sum_placed, with `key(cx, cy)` where a point falls (cells, on
-// the grid; any non-negative int32 per cell) and `level(key)` the level there.
-// The points are placed a vector at a time, in the order the scalar code does
-// it, so the cells are the same; then looked up one by one.
-template <class Key, class Level>
+// the grid; any non-negative int32 per cell), `off_key` off it and
+// `term(key)` the log-likelihood. The points are placed a vector at a time,
+// in the order the scalar code does it, so the cells are the same; then
+// looked up one by one. `place_fast(i, count, keys)` may key points i, i + 1,
+// ... of a block itself and returns how many it did (a multiple of kLanes);
+// the rest are placed here.
+template <class Key, class Term, class PlaceFast>
 double sum_keyed(const LikelihoodField::Cells& f, const float* x, const float* y, std::size_t n, float c, float s,
-                 float tx, float ty, const Key& key, const Level& level) {
+                 float tx, float ty, const Key& key, int32_t off_key, const Term& term, const PlaceFast& place_fast) {
   const Floats vc = {c, c, c, c}, vs = {s, s, s, s}, vtx = {tx, tx, tx, tx}, vty = {ty, ty, ty, ty};
   const Floats width = {f.width, f.width, f.width, f.width}, height = {f.height, f.height, f.height, f.height};
   const Floats zero = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -88,11 +100,10 @@ double sum_keyed(const LikelihoodField::Cells& f, const float* x, const float* y
   // for the previous addition.
   double sum0 = 0.0, sum1 = 0.0, sum2 = 0.0, sum3 = 0.0;
   int32_t keys[kBlock];
-  const auto term = [&](int32_t k) { return k == kOffMap ? f.off_map : f.table[level(k)]; };
   std::size_t i = 0;
   while (i + kLanes <= n) {
     const std::size_t count = std::min(kBlock, (n - i) / kLanes * kLanes);
-    for (std::size_t k = 0; k < count; k += kLanes) {
+    for (std::size_t k = place_fast(i, count, keys); k < count; k += kLanes) {
       Floats px, py;
       std::memcpy(&px, x + i + k, sizeof px);
       std::memcpy(&py, y + i + k, sizeof py);
@@ -102,7 +113,7 @@ double sum_keyed(const LikelihoodField::Cells& f, const float* x, const float* y
       // Off the grid the coordinates may be anything: converted only where inside.
       const Ints cx = __builtin_convertvector(reinterpret_cast<Floats>(reinterpret_cast<Ints>(gx) & inside), Ints);
       const Ints cy = __builtin_convertvector(reinterpret_cast<Floats>(reinterpret_cast<Ints>(gy) & inside), Ints);
-      const Ints masked = (key(cx, cy) & inside) | (~inside & kOffMap);
+      const Ints masked = (key(cx, cy) & inside) | (~inside & off_key);
       std::memcpy(keys + k, &masked, sizeof masked);
     }
     for (std::size_t k = 0; k < count; k += kLanes) {
@@ -127,9 +138,16 @@ double LikelihoodField::sum_placed(const float* x, const float* y, std::size_t n
   if (dense_levels_) {
     const int32_t width = geometry().width;
     const uint8_t* levels = dense_levels_->data();
+    // Off the grid: the cell past the last, at the saturated level, whose
+    // log-likelihood is the off-map one (no branch per point).
+    const auto off_key = static_cast<int32_t>(geometry().size());
+    const auto place_fast = [&](std::size_t i, std::size_t count, int32_t* keys) {
+      return avx2_ ? place_dense_keys_avx2(x + i, y + i, count, c, s, tx, ty, width, f.width, f.height, off_key, keys)
+                   : std::size_t{0};
+    };
     return sum_keyed(
-        f, x, y, n, c, s, tx, ty, [&](const Ints& cx, const Ints& cy) { return cy * width + cx; },
-        [&](int32_t key) { return levels[key]; });
+        f, x, y, n, c, s, tx, ty, [&](const Ints& cx, const Ints& cy) { return cy * width + cx; }, off_key,
+        [&](int32_t key) { return table_wide_[levels[key]]; }, place_fast);
   }
   // A tile's index and the cell within it in one key (tile << kCellBits | cell):
   // up to 2^(31 - kCellBits) tiles, a map of 2^31 cells (2.3 km square at
@@ -146,7 +164,11 @@ double LikelihoodField::sum_placed(const float* x, const float* y, std::size_t n
       [&](const Ints& cx, const Ints& cy) {
         return (((cy >> kBits) * tiles_x + (cx >> kBits)) << kCellBits) | ((cy & kMask) << kBits) | (cx & kMask);
       },
-      [&](int32_t key) { return f.levels.tiles[key >> kCellBits][key & ((1 << kCellBits) - 1)]; });
+      kOffMap,
+      [&](int32_t key) {
+        return key == kOffMap ? f.off_map : table_wide_[f.levels.tiles[key >> kCellBits][key & ((1 << kCellBits) - 1)]];
+      },
+      [](std::size_t, std::size_t, int32_t*) { return std::size_t{0}; });
 }
 
 LikelihoodField::CellScan LikelihoodField::place_cells(const float* x, const float* y, std::size_t n, float c, float s,
@@ -200,7 +222,7 @@ double LikelihoodField::sum_shifted(const CellScan& scan, int32_t dx, int32_t dy
     const int32_t* keys = scan.keys.data();
     const uint8_t* levels = dense_levels_->data();
     const auto offset = static_cast<int32_t>(shift);
-    return sum_terms(scan.keys.size(), [&](std::size_t i) { return f.table[levels[keys[i] + offset]]; });
+    return sum_terms(scan.keys.size(), [&](std::size_t i) { return table_wide_[levels[keys[i] + offset]]; });
   }
   // Point by point, off the grid at the off-map value; a dense field's cells in one load.
   const auto sum_checked = [&](const auto& level_at) {
@@ -210,8 +232,8 @@ double LikelihoodField::sum_shifted(const CellScan& scan, int32_t dx, int32_t dy
       // Unsigned: a negative cell compares as huge, two tests instead of four.
       return static_cast<uint64_t>(cx) < static_cast<uint64_t>(width) &&
                      static_cast<uint64_t>(cy) < static_cast<uint64_t>(height)
-                 ? f.table[level_at(cx, cy)]
-                 : f.off_map;
+                 ? table_wide_[level_at(cx, cy)]
+                 : double{f.off_map};
     });
   };
   if (dense_levels_) {

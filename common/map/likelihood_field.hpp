@@ -59,11 +59,15 @@ class LikelihoodField {
   // Throws std::invalid_argument unless sigma_hit, range_max > 0, the weights
   // are non-negative and sum to 1, and the distances reach likelihood_field_reach().
   // With dense_cells_max > 0 and a map of at most that many cells, the field
-  // also keeps the levels row-major, a byte a cell: sum_placed then reads a
-  // cell with one load instead of two (the tile, then the cell), 20 % of the
-  // localizer's time on fr079.
+  // also keeps the levels row-major, a byte a cell and one saturated cell
+  // past the last for off the map: sum_placed then reads a cell with one
+  // load instead of two (the tile, then the cell), 20 % of the localizer's
+  // time on fr079, and an off-map point with no branch.
+  // kBest sums a dense field with AVX2 where the machine has it
+  // (placed_keys_avx2.hpp), to the bit as kPortable does.
+  enum class Vectorization { kBest, kPortable };
   LikelihoodField(std::shared_ptr<const DistanceField> obstacles, const LikelihoodFieldOptions& options,
-                  std::size_t dense_cells_max = 0);
+                  std::size_t dense_cells_max = 0, Vectorization vectorization = Vectorization::kBest);
 
   const GridGeometry& geometry() const { return distances_->geometry(); }
   const DistanceField& distances() const { return *distances_; }
@@ -113,15 +117,18 @@ class LikelihoodField {
   float log_likelihood_at(const Eigen::Vector2d& world) const;
   float off_map_log_likelihood() const { return off_map_; }
   float max_range_log_likelihood() const { return max_range_; }
-  std::size_t dense_bytes() const { return dense_levels_ ? dense_levels_->size() : 0; }
+  std::size_t dense_bytes() const { return dense_levels_ ? dense_levels_->size() : 0; }  // cells + 1
+  bool sums_with_avx2() const { return avx2_ && dense_levels_ != nullptr; }
 
  private:
   std::shared_ptr<const DistanceField> distances_;
-  std::array<float, DistanceField::kSaturated + 1> table_{};  // per distance level
+  std::array<float, DistanceField::kSaturated + 1> table_{};        // per distance level
+  std::array<double, DistanceField::kSaturated + 1> table_wide_{};  // the same, widened once, not per beam
   float off_map_ = 0.0f;
   float max_range_ = 0.0f;
   // Row-major, or null; shared, so copies of the field share it as they share the distances.
   std::shared_ptr<const std::vector<uint8_t>> dense_levels_;
+  bool avx2_ = false;
 };
 
 }  // namespace slamer

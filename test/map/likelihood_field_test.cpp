@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -51,6 +52,7 @@ struct TiledAndDense {
   GridGeometry g{100, 70, 0.05, {}};
   std::shared_ptr<const DistanceField> distances;
   LikelihoodField tiled, dense;
+  LikelihoodField dense_portable;  // dense, never with AVX2
 };
 TiledAndDense scattered_obstacles(std::mt19937& rng) {
   const GridGeometry g{100, 70, 0.05, {}};
@@ -61,14 +63,15 @@ TiledAndDense scattered_obstacles(std::mt19937& rng) {
   }
   const auto distances = std::make_shared<const DistanceField>(g, targets, 1.5);
   return {g, distances, LikelihoodField(distances, LikelihoodFieldOptions{}),
-          LikelihoodField(distances, LikelihoodFieldOptions{}, g.size())};
+          LikelihoodField(distances, LikelihoodFieldOptions{}, g.size()),
+          LikelihoodField(distances, LikelihoodFieldOptions{}, g.size(), LikelihoodField::Vectorization::kPortable)};
 }
 
 TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMapTiledOrDense) {
   std::mt19937 rng(7);
-  const auto [g, distances, field, dense] = scattered_obstacles(rng);
+  const auto [g, distances, field, dense, dense_portable] = scattered_obstacles(rng);
   EXPECT_EQ(field.dense_bytes(), 0u);
-  EXPECT_EQ(dense.dense_bytes(), g.size());
+  EXPECT_EQ(dense.dense_bytes(), g.size() + 1);  // and the off-map cell
   EXPECT_EQ(LikelihoodField(distances, LikelihoodFieldOptions{}, g.size() - 1).dense_bytes(), 0u);
   const LikelihoodField::Cells cells = field.cells();
   // Points reaching 30 cells beyond every edge, and a few on the edges themselves.
@@ -103,14 +106,71 @@ TEST(LikelihoodField, SumOfPlacedPointsIsTheSumOfTheirCellsOnAndOffTheMapTiledOr
       }
       EXPECT_NEAR(field.sum_placed(x.data(), y.data(), n, c, s, tx, ty), expected, 1e-9) << n << " points";
       EXPECT_NEAR(dense.sum_placed(x.data(), y.data(), n, c, s, tx, ty), expected, 1e-9) << n << " points, dense";
+      EXPECT_NEAR(dense_portable.sum_placed(x.data(), y.data(), n, c, s, tx, ty), expected, 1e-9) << n << " points";
     }
   }
   EXPECT_GT(off_map, 100);  // both branches are exercised
 }
 
+// The AVX2 placing (placed_keys_avx2.hpp) rounds as the portable code does, so
+// a beam's cell and the sum are the same to the bit: at every length from 0
+// to 140 (eight at a time, four, one) for points on the map's edges, and at
+// 5000 poses that each put a point on a cell's corner.
+TEST(LikelihoodField, AvxSumsAreThePortableSumsToTheBit) {
+  std::mt19937 rng(11);
+  const auto [g, distances, tiled, dense, dense_portable] = scattered_obstacles(rng);
+  EXPECT_FALSE(tiled.sums_with_avx2());
+  EXPECT_FALSE(dense_portable.sums_with_avx2());
+  if (!dense.sums_with_avx2()) {
+    GTEST_SKIP() << "this machine has no AVX2: the portable code is the only one";
+  }
+  std::uniform_real_distribution<float> coordinate(-80.0f, 80.0f);
+  std::vector<float> x, y;
+  for (int k = 0; k < 140; ++k) {
+    x.push_back(coordinate(rng));
+    y.push_back(coordinate(rng));
+  }
+  // Unrotated and untranslated, these land on the edges of the map and of its cells.
+  const float edges[][2] = {{0.0f, 0.0f},          {-0.0f, 3.0f},
+                            {99.0f, 0.0f},         {100.0f, 5.0f},
+                            {5.0f, 69.0f},         {5.0f, 70.0f},
+                            {-1e-7f, 5.0f},        {1e-7f, 6.0f},
+                            {50.0f, 35.0f},        {3.0f, -0.0f},
+                            {0.0f, 69.0f},         {99.999f, 69.999f},
+                            {std::nanf(""), 1.0f}, {2.0f, std::numeric_limits<float>::infinity()}};
+  for (std::size_t k = 0; k < std::size(edges); ++k) {
+    x[3 + 9 * k] = edges[k][0];
+    y[3 + 9 * k] = edges[k][1];
+  }
+  const auto same = [&](std::size_t n, float a, float tx, float ty) {
+    const float c = a == 0.0f ? 1.0f : std::cos(a), s = a == 0.0f ? 0.0f : std::sin(a);
+    return dense.sum_placed(x.data(), y.data(), n, c, s, tx, ty) ==
+           dense_portable.sum_placed(x.data(), y.data(), n, c, s, tx, ty);
+  };
+  std::size_t differing = 0;
+  for (std::size_t n = 0; n <= x.size(); ++n) {
+    differing += same(n, 0.0f, 0.0f, 0.0f) ? 0 : 1;
+  }
+  EXPECT_EQ(differing, 0u) << "of 141 sums on the edges";
+  // Each pose puts one point (as the portable code rounds it) exactly on a
+  // cell's corner: a fused multiply-add, rounding once, lands beside it.
+  std::uniform_real_distribution<float> heading(-3.2f, 3.2f);
+  std::uniform_int_distribution<int> corner(1, 68);
+  for (int pose = 0; pose < 5000; ++pose) {
+    const float a = heading(rng);
+    const std::size_t i = static_cast<std::size_t>(pose) % x.size();
+    const float rotated_x = std::cos(a) * x[i] - std::sin(a) * y[i];
+    const float rotated_y = std::sin(a) * x[i] + std::cos(a) * y[i];
+    differing +=
+        same(x.size(), a, static_cast<float>(corner(rng)) - rotated_x, static_cast<float>(corner(rng)) - rotated_y) ? 0
+                                                                                                                    : 1;
+  }
+  EXPECT_EQ(differing, 0u) << "of 5000 sums with a point on a cell's corner";
+}
+
 TEST(LikelihoodField, PlacedCellsShiftedByWholeCellsSumAsThePointsPlacedThereTiledOrDense) {
   std::mt19937 rng(11);
-  const auto [g, distances, tiled, dense] = scattered_obstacles(rng);
+  const auto [g, distances, tiled, dense, dense_portable] = scattered_obstacles(rng);
   const float c = std::cos(0.7f), s = std::sin(0.7f), tx = 50.25f, ty = 35.5f;
   // Points that land at least 0.01 cell from a cell's edge, so that a float's
   // rounding cannot tell placing then shifting from placing there; a scan
