@@ -1,6 +1,7 @@
 #include "localizer/particle_filter.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -61,6 +62,9 @@ ParticleFilter::ParticleFilter(const SemanticMap& map, const LocalizerOptions& o
   if (options.particles < 1) {
     throw std::invalid_argument("the filter needs at least one particle");
   }
+  grid_from_world_ = inverse(geometry_.origin);
+  grid_from_world_cos_ = std::cos(grid_from_world_.theta);
+  grid_from_world_sin_ = std::sin(grid_from_world_.theta);
   std::vector<DistanceField> distances = class_distance_fields(map, field_reach(options));
   for (std::size_t c = 0; c < map.classes.size(); ++c) {
     map_classes_.push_back(map.classes[c].name);
@@ -234,10 +238,22 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
   return prepared;
 }
 double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const {
-  // Sensor pose in grid cells: one transform per particle, then a multiply-add per beam.
-  const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
-  const float c = static_cast<float>(std::cos(grid.theta));
-  const float s = static_cast<float>(std::sin(grid.theta));
+  // Sensor pose in grid cells: one transform per particle, then a multiply-add
+  // per beam. compose(grid_from_world_, compose(pose, mount_)) written out
+  // with one sine and cosine per particle, not four: the origin's are kept,
+  // and with the mount and the origin unrotated (as nearly always) the grid's
+  // heading is the particle's to the bit. The same arithmetic as compose, so
+  // the same numbers.
+  const double pose_c = std::cos(pose.theta), pose_s = std::sin(pose.theta);
+  const Pose2 sensor{pose.x + pose_c * mount_.x - pose_s * mount_.y, pose.y + pose_s * mount_.x + pose_c * mount_.y,
+                     wrap_angle(pose.theta + mount_.theta)};
+  const double gc = grid_from_world_cos_, gs = grid_from_world_sin_;
+  const Pose2 grid{grid_from_world_.x + gc * sensor.x - gs * sensor.y,
+                   grid_from_world_.y + gs * sensor.x + gc * sensor.y,
+                   wrap_angle(grid_from_world_.theta + sensor.theta)};
+  const bool same_heading = std::bit_cast<uint64_t>(grid.theta) == std::bit_cast<uint64_t>(pose.theta);
+  const float c = static_cast<float>(same_heading ? pose_c : std::cos(grid.theta));
+  const float s = static_cast<float>(same_heading ? pose_s : std::sin(grid.theta));
   const float tx = static_cast<float>(grid.x / geometry_.resolution);
   const float ty = static_cast<float>(grid.y / geometry_.resolution);
   const std::vector<float>& px = scan.points.x;

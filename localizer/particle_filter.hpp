@@ -214,6 +214,9 @@ class ParticleFilter {
   LocalizerOptions options_;
   Pose2 mount_;
   GridGeometry geometry_;
+  // inverse(geometry_.origin) and its cos and sin: the same for every particle.
+  Pose2 grid_from_world_;
+  double grid_from_world_cos_ = 1.0, grid_from_world_sin_ = 0.0;
   std::shared_ptr<const DistanceField> obstacles_;
   LikelihoodField field_;
   std::vector<std::string> map_classes_;

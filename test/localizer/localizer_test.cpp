@@ -115,6 +115,46 @@ TEST(ParticleFilter, LfmPrefersTheTruePose) {
   EXPECT_GT(right, filter.scan_log_likelihood({2.0, 3.0, 0.3}, scan));
 }
 
+// The beams are scored where the sensor is: compose(pose, mount) placed on
+// the grid through the map's origin (sensor_in_cells), whether the mount or
+// the origin is rotated or not. The filter writes that out with one sine and
+// cosine a particle where it can; the sum is the same to the bit.
+TEST(ParticleFilter, BeamsAreScoredAtTheSensorPoseWithARotatedMountOrMapOrigin) {
+  const SmallWorld w;
+  const LocalizerOptions options;
+  const LaserScan scan = w.scan_at({2.0, 3.0, 0.2});
+  for (const double origin_turn : {0.0, 0.3}) {
+    for (const Pose2& mount : {w.robot.lidar.mount, Pose2{0.15, -0.05, -0.4}}) {
+      SemanticMap map = w.map;
+      map.geometry.origin = {-1.0, 0.5, origin_turn};
+      const ParticleFilter filter(map, options, mount);
+      // Quantized as the filter's (ParticleFilter's field_reach); points as ParticleFilter::prepare makes them.
+      const double reach = std::max(likelihood_field_reach(options.lfm), 3.0 * options.slamer.prior_sigma);
+      const LikelihoodField field(std::make_shared<const DistanceField>(obstacle_distance_field(map, reach)),
+                                  options.lfm);
+      ScanPoints points;
+      for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+        const double r = scan.ranges[i];
+        if (r >= scan.range_min && r < scan.range_max) {
+          points.x.push_back(static_cast<float>(r * std::cos(scan.angle(i)) * (1.0 / map.geometry.resolution)));
+          points.y.push_back(static_cast<float>(r * std::sin(scan.angle(i)) * (1.0 / map.geometry.resolution)));
+        }
+      }
+      ASSERT_GT(points.x.size(), 300u);
+      for (const Pose2& pose : {Pose2{2.0, 3.0, 0.2}, Pose2{2.5, 2.0, -3.1}, Pose2{1.0, 4.0, 3.1}}) {
+        const Pose2 sensor = sensor_in_cells(map.geometry, pose, mount);
+        const double expected =
+            options.lfm.beam_weight * field.sum_placed(points.x.data(), points.y.data(), points.x.size(),
+                                                       static_cast<float>(std::cos(sensor.theta)),
+                                                       static_cast<float>(std::sin(sensor.theta)),
+                                                       static_cast<float>(sensor.x), static_cast<float>(sensor.y));
+        EXPECT_EQ(filter.scan_log_likelihood(pose, scan), expected)
+            << "origin turned " << origin_turn << ", mount turned " << mount.theta << ", heading " << pose.theta;
+      }
+    }
+  }
+}
+
 TEST(ParticleFilter, SlamerTermDiscriminatesRightFromWrongPose) {
   const SmallWorld w;
   LocalizerOptions options;
