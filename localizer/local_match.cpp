@@ -9,9 +9,8 @@ namespace slamer {
 
 namespace {
 
-// The grid's fast path: the scan thinned once, then each heading's points
-// placed in cells and summed at every shift (field_log_likelihood thins as it
-// goes, as the refinement's few poses need).
+// The scan thinned once: the grid places each heading's points in cells and
+// sums them at every shift; the refinement sums them at each pose it tries.
 ScanPoints thin(const ScanPoints& points, std::size_t step) {
   ScanPoints thinned;
   for (std::size_t i = 0; i < points.x.size(); i += step) {
@@ -28,8 +27,8 @@ struct Scored {
 
 // Coordinate ascent from `from` below the grid's resolution, steps halving
 // three times, never leaving the window around `start`.
-Scored refine(const LikelihoodField& field, const ScanPoints& points, std::size_t step, const Pose2& start,
-              double shift_cells, double turn, double step_cells, double turn_step, Scored from) {
+Scored refine(const LikelihoodField& field, const ScanPoints& points, const Pose2& start, double shift_cells,
+              double turn, double step_cells, double turn_step, Scored from) {
   double dxy = step_cells / 2.0;
   double dtheta = turn_step / 2.0;
   for (int level = 0; level < 3; ++level, dxy /= 2.0, dtheta /= 2.0) {
@@ -43,7 +42,7 @@ Scored refine(const LikelihoodField& field, const ScanPoints& points, std::size_
             std::abs(t.theta - start.theta) > turn) {
           continue;  // the window bounds the refinement too
         }
-        const double s = field_log_likelihood(field, points, t, step);
+        const double s = field_log_likelihood(field, points, t, 1);
         if (s > from.score) {
           from = {t, s};
         }
@@ -117,14 +116,17 @@ LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points,
            (ix == -shifts || at(k, iy, ix - 1).score <= s) && (ix == shifts || at(k, iy, ix + 1).score <= s);
   };
   const double apart_cells = window.separation / g.resolution;
+  const auto apart = [&](const Scored& c) {
+    return std::hypot(c.sensor.x - best.sensor.x, c.sensor.y - best.sensor.y) > apart_cells ||
+           std::abs(c.sensor.theta - best.sensor.theta) > window.separation_turn;
+  };
   std::optional<Scored> other;
   for (int k = -turns; k <= turns; ++k) {
     for (int iy = -shifts; iy <= shifts; ++iy) {
       for (int ix = -shifts; ix <= shifts; ++ix) {
         const Scored& c = at(k, iy, ix);
-        const bool apart = std::hypot(c.sensor.x - best.sensor.x, c.sensor.y - best.sensor.y) > apart_cells ||
-                           std::abs(c.sensor.theta - best.sensor.theta) > window.separation_turn;
-        if (apart && (!other || c.score > other->score) && peak(k, iy, ix)) {
+        // The score first: most poses score below the runner-up so far.
+        if ((!other || c.score > other->score) && apart(c) && peak(k, iy, ix)) {
           other = c;
         }
       }
@@ -132,7 +134,7 @@ LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points,
   }
 
   const auto refined = [&](const Scored& from) {
-    return refine(field, points, step, start, shift_cells, window.turn, step_cells, turn_step, from);
+    return refine(field, thinned, start, shift_cells, window.turn, step_cells, turn_step, from);
   };
   const Scored matched = refined(best);
   const std::size_t used = (points.x.size() + step - 1) / step;
@@ -149,9 +151,9 @@ Pose2 climb_locally(const LikelihoodField& field, const ScanPoints& points, cons
   const std::size_t step = std::max<std::size_t>(1, points.x.size() / static_cast<std::size_t>(std::max(beams, 1)));
   const Pose2 sensor = sensor_in_cells(g, start, mount);
   const double step_cells = 2.0 * shift / g.resolution;  // refine() starts at half the grid's step
-  const Scored from{sensor, field_log_likelihood(field, points, sensor, step)};
-  const Scored climbed =
-      refine(field, points, step, sensor, 2.0 * step_cells, 4.0 * turn, step_cells, 2.0 * turn, from);
+  const ScanPoints thinned = thin(points, step);
+  const Scored from{sensor, field_log_likelihood(field, thinned, sensor, 1)};
+  const Scored climbed = refine(field, thinned, sensor, 2.0 * step_cells, 4.0 * turn, step_cells, 2.0 * turn, from);
   return base_in_map(g, climbed.sensor, mount);
 }
 

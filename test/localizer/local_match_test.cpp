@@ -25,6 +25,30 @@ class LocalMatchTest : public ::testing::Test {
   LikelihoodField field{std::make_shared<const DistanceField>(obstacle_distance_field(w.map, 1.2)), {}};
 };
 
+// How matches and proposals score a pose: every step-th point's cell, placed
+// as the beams are, summed; a point off the map at the off-map value.
+TEST_F(LocalMatchTest, FieldLogLikelihoodSumsEveryStepthPointsCellOnAndOffTheMap) {
+  const ScanPoints points = end_points(w.scan_at({2.0, 3.0, 0.3}), w.map.geometry.resolution);
+  ASSERT_GT(points.x.size(), 300u);
+  const LikelihoodField::Cells cells = field.cells();
+  int off_map = 0;
+  // In the room, and near its corner, where part of the scan falls off the map.
+  for (const Pose2& sensor : {Pose2{40.0, 60.0, 0.3}, Pose2{3.0, 2.0, -2.5}}) {
+    const auto c = static_cast<float>(std::cos(sensor.theta)), s = static_cast<float>(std::sin(sensor.theta));
+    for (const std::size_t step : {1, 2, 3, 7, 1000}) {
+      double expected = 0.0;
+      for (std::size_t i = 0; i < points.x.size(); i += step) {
+        const float gx = c * points.x[i] - s * points.y[i] + static_cast<float>(sensor.x);
+        const float gy = s * points.x[i] + c * points.y[i] + static_cast<float>(sensor.y);
+        expected += cells(gx, gy);
+        off_map += cells(gx, gy) == field.off_map_log_likelihood() ? 1 : 0;
+      }
+      EXPECT_NEAR(field_log_likelihood(field, points, sensor, step), expected, 1e-9) << "step " << step;
+    }
+  }
+  EXPECT_GT(off_map, 20);
+}
+
 TEST_F(LocalMatchTest, FindsThePoseFromAPredictionOffByAFailingOdometrysError) {
   const Pose2 truth{2.0, 3.0, 0.3};
   const ScanPoints points = end_points(w.scan_at(truth), w.map.geometry.resolution);
