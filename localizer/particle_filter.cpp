@@ -237,13 +237,11 @@ ParticleFilter::PreparedScan ParticleFilter::prepare(const LaserScan& scan, cons
   }
   return prepared;
 }
-double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const {
-  // Sensor pose in grid cells: one transform per particle, then a multiply-add
-  // per beam. compose(grid_from_world_, compose(pose, mount_)) written out
-  // with one sine and cosine per particle, not four: the origin's are kept,
-  // and with the mount and the origin unrotated (as nearly always) the grid's
-  // heading is the particle's to the bit. The same arithmetic as compose, so
-  // the same numbers.
+Pose2 ParticleFilter::sensor_on_grid(const Pose2& pose, double* c, double* s) const {
+  // compose(grid_from_world_, compose(pose, mount_)) written out with one sine
+  // and cosine, not four: the origin's are kept, and with the mount and the
+  // origin unrotated (as nearly always) the grid's heading is the particle's
+  // to the bit. The same arithmetic as compose, so the same numbers.
   const double pose_c = std::cos(pose.theta), pose_s = std::sin(pose.theta);
   const Pose2 sensor{pose.x + pose_c * mount_.x - pose_s * mount_.y, pose.y + pose_s * mount_.x + pose_c * mount_.y,
                      wrap_angle(pose.theta + mount_.theta)};
@@ -252,8 +250,17 @@ double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedSca
                    grid_from_world_.y + gs * sensor.x + gc * sensor.y,
                    wrap_angle(grid_from_world_.theta + sensor.theta)};
   const bool same_heading = std::bit_cast<uint64_t>(grid.theta) == std::bit_cast<uint64_t>(pose.theta);
-  const float c = static_cast<float>(same_heading ? pose_c : std::cos(grid.theta));
-  const float s = static_cast<float>(same_heading ? pose_s : std::sin(grid.theta));
+  *c = same_heading ? pose_c : std::cos(grid.theta);
+  *s = same_heading ? pose_s : std::sin(grid.theta);
+  return grid;
+}
+
+double ParticleFilter::beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const {
+  // Sensor pose in grid cells: one transform per particle, then a multiply-add per beam.
+  double grid_c = 1.0, grid_s = 0.0;
+  const Pose2 grid = sensor_on_grid(pose, &grid_c, &grid_s);
+  const float c = static_cast<float>(grid_c);
+  const float s = static_cast<float>(grid_s);
   const float tx = static_cast<float>(grid.x / geometry_.resolution);
   const float ty = static_cast<float>(grid.y / geometry_.resolution);
   const std::vector<float>& px = scan.points.x;

@@ -124,6 +124,11 @@ class ParticleFilter {
   // model x map prior), for tests and diagnostics.
   double object_log_likelihood(const Pose2& pose, const LineObject& object,
                                const std::vector<std::string>& classes) const;
+  // The objects' part of the weight (SLAMER; 0 in the other modes) of
+  // particles at `poses` for one recognized set, as update() computes it: an
+  // object's term is shared between poses that put its samples in the same
+  // cells. For tests and diagnostics.
+  std::vector<double> objects_weights(const std::vector<Pose2>& poses, const LineObjectSet& objects) const;
   // The LFM log-likelihood of a pose over a scan's used beams (already weighted by beam_weight).
   double scan_log_likelihood(const Pose2& pose, const LaserScan& scan) const;
 
@@ -132,15 +137,21 @@ class ParticleFilter {
   struct PreparedObjects;
   PreparedScan prepare(const LaserScan& scan, const LineObjectSet* objects) const;
   PreparedObjects prepare_objects(const LineObjectSet& objects) const;
+  // The sensor's pose on the grid (metres from the grid's origin; what
+  // compose(inverse(origin), compose(pose, mount)) gives) of a particle at
+  // `pose`, with the cos and sin of its heading.
+  Pose2 sensor_on_grid(const Pose2& pose, double* c, double* s) const;
   double beams_log_likelihood(const Pose2& pose, const PreparedScan& scan) const;
   // `free_space`: the distances free-space classes are scored by (Eq. (7));
   // `unmapped_probability`: Eq. (7)'s floor (log_map_prior); `spatial_line_ends`:
   // which classes leave out the end samples, `physical_line_distance`: how a physical
-  // line's samples make its distance (SlamerOptions).
+  // line's samples make its distance (SlamerOptions). `memo`: each object's
+  // term is looked up by its samples' cells first and kept there (only for
+  // one set of these arguments, objects_weight's).
   double objects_log_likelihood(const Pose2& pose, const PreparedObjects& objects, const DistanceField& free_space,
                                 double unmapped_probability, SpatialLineEnds spatial_line_ends,
                                 PhysicalLineDistance physical_line_distance,
-                                std::vector<std::vector<double>>* class_terms) const;
+                                std::vector<std::vector<double>>* class_terms, bool memo = false) const;
   // The objects' part of a particle's weight (Eq. (7) with its floor): SLAMER
   // only, 0 in the other modes. The tracked cloud and the challengers share it.
   double objects_weight(const Pose2& pose, const PreparedObjects& objects) const;

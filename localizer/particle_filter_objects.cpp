@@ -92,11 +92,10 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
                                               const DistanceField& free_space, double unmapped_probability,
                                               SpatialLineEnds spatial_line_ends,
                                               PhysicalLineDistance physical_line_distance,
-                                              std::vector<std::vector<double>>* class_terms) const {
-  // The sensor pose in grid cells: one transform per particle.
-  const Pose2 grid = compose(inverse(geometry_.origin), compose(pose, mount_));
-  const double c = std::cos(grid.theta);
-  const double s = std::sin(grid.theta);
+                                              std::vector<std::vector<double>>* class_terms, bool memo) const {
+  // The sensor pose on the grid: one transform per particle.
+  double c = 1.0, s = 0.0;
+  const Pose2 grid = sensor_on_grid(pose, &c, &s);
   const double to_cells = 1.0 / geometry_.resolution;
   // An object off the map, or a class with no cells, is this far from it: the
   // same for every pose, so it neither helps nor hurts.
@@ -110,18 +109,29 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   std::vector<double> terms;
   std::vector<Cell> cells;        // sample cells on the map; off-map samples are left out
   std::vector<Cell> inner_cells;  // of the samples between the ends, if they may be used
+  std::vector<int32_t> key;       // every sample's cell, off the map (-1, -1): the memo's key
   for (const PreparedObjects::Object& o : objects.objects) {
     cells.clear();
     inner_cells.clear();
+    key.clear();
     for (std::size_t k = 0; k < o.samples.size(); ++k) {
       const Eigen::Vector2d& p = o.samples[k];
       const double gx = (c * p.x() - s * p.y() + grid.x) * to_cells;
       const double gy = (s * p.x() + c * p.y() + grid.y) * to_cells;
       if (gx >= 0.0 && gy >= 0.0 && gx < geometry_.width && gy < geometry_.height) {
         cells.push_back({static_cast<int>(gx), static_cast<int>(gy)});
+        key.insert(key.end(), {cells.back().x, cells.back().y});
         if (spatial_line_ends != SpatialLineEnds::kScored && k > 0 && k + 1 < o.samples.size()) {
           inner_cells.push_back(cells.back());
         }
+      } else {
+        key.insert(key.end(), {-1, -1});
+      }
+    }
+    if (memo && class_terms == nullptr) {
+      if (const auto known = o.weight_by_cells.find(key); known != o.weight_by_cells.end()) {
+        total += known->second;
+        continue;
       }
     }
     const std::size_t inner_samples = o.samples.size() >= 3 ? o.samples.size() - 2 : 0;
@@ -143,7 +153,11 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
       terms[l] = o.log_recognition[l] +
                  (d == far ? prior_at_far : log_map_prior(d, options_.slamer.prior_sigma, unmapped_probability));
     }
-    total += options_.slamer.object_weight * log_sum_exp(terms);
+    const double weight = options_.slamer.object_weight * log_sum_exp(terms);
+    total += weight;
+    if (memo && class_terms == nullptr) {
+      o.weight_by_cells.emplace(key, weight);
+    }
     if (class_terms != nullptr) {
       class_terms->push_back(terms);
     }
@@ -154,8 +168,18 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
 double ParticleFilter::objects_weight(const Pose2& pose, const PreparedObjects& objects) const {
   return options_.mode == LocalizerMode::kSlamer
              ? objects_log_likelihood(pose, objects, *free_distance_, options_.slamer.unmapped_probability,
-                                      SpatialLineEnds::kScored, PhysicalLineDistance::kMean, nullptr)
+                                      SpatialLineEnds::kScored, PhysicalLineDistance::kMean, nullptr, true)
              : 0.0;
+}
+
+std::vector<double> ParticleFilter::objects_weights(const std::vector<Pose2>& poses,
+                                                    const LineObjectSet& objects) const {
+  const PreparedObjects prepared = prepare_objects(objects);
+  std::vector<double> weights;
+  for (const Pose2& pose : poses) {
+    weights.push_back(objects_weight(pose, prepared));
+  }
+  return weights;
 }
 
 double ParticleFilter::object_log_likelihood(const Pose2& pose, const LineObject& object,

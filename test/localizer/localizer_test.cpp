@@ -5,6 +5,9 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <random>
+#include <set>
+#include <tuple>
 
 #include "localizer/motion_model.hpp"
 #include "localizer/particle_filter.hpp"
@@ -172,6 +175,54 @@ TEST(ParticleFilter, SlamerTermDiscriminatesRightFromWrongPose) {
   const double right = filter.object_log_likelihood(truth, door, classes);
   EXPECT_GT(right, filter.object_log_likelihood({4.0, 4.2, 0.0}, door, classes) + 1.0);
   EXPECT_GT(right, filter.object_log_likelihood({3.4, 3.0, 0.0}, door, classes) + 1.0);
+}
+
+// update() computes an object's term once for all particles that put its
+// samples in the same cells: a cloud of 400 poses (most sharing cells, some
+// with samples off the map) gets, to the bit, what each pose gets alone.
+TEST(ParticleFilter, ObjectTermsSharedBetweenParticlesInTheSameCellsAreEachPosesOwn) {
+  const SmallWorld w;
+  const LocalizerOptions options;  // SLAMER
+  const ParticleFilter filter(w.map, options, w.robot.lidar.mount);
+  const std::vector<std::string> classes = RecognizerOptions{}.classes;
+  const Pose2 sensor = compose(Pose2{4.0, 3.0, 0.0}, w.robot.lidar.mount);
+  LineObjectSet set;
+  set.class_names = classes;
+  // A door (mapped), a wall-like object, and one reaching past the map's edge from most poses.
+  for (const auto& [start, end, kind, label] :
+       {std::tuple{Eigen::Vector2d{6.0, 2.5}, Eigen::Vector2d{6.0, 3.5}, LineKind::kSpatial, 0},
+        std::tuple{Eigen::Vector2d{3.0, 5.55}, Eigen::Vector2d{4.2, 5.55}, LineKind::kPhysical, 7},
+        std::tuple{Eigen::Vector2d{7.5, 1.0}, Eigen::Vector2d{12.0, 1.0}, LineKind::kPhysical, 4}}) {
+    LineObject o;
+    o.kind = kind;
+    o.start = transform_point(inverse(sensor), start);
+    o.end = transform_point(inverse(sensor), end);
+    o.probs.assign(classes.size(), 0.02f);
+    o.probs[static_cast<std::size_t>(label)] = 0.86f;
+    set.objects.push_back(o);
+  }
+  std::mt19937 rng(5);
+  std::normal_distribution<double> spread(0.0, 1.0);
+  std::vector<Pose2> poses;
+  for (int i = 0; i < 400; ++i) {
+    const double scale = i < 300 ? 0.01 : 0.5;  // a tight cloud, then a wide one
+    poses.push_back({4.0 + scale * spread(rng), 3.0 + scale * spread(rng), 0.2 * scale * spread(rng)});
+  }
+  const std::vector<double> shared = filter.objects_weights(poses, set);
+  ASSERT_EQ(shared.size(), poses.size());
+  std::size_t differing = 0;
+  std::set<double> distinct;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    double own = 0.0;  // object by object, in the set's order, as the filter sums them
+    for (const LineObject& o : set.objects) {
+      own += filter.object_log_likelihood(poses[i], o, classes);
+    }
+    differing += shared[i] == own ? 0 : 1;
+    distinct.insert(shared[i]);
+  }
+  EXPECT_EQ(differing, 0u) << "of " << poses.size() << " poses";
+  EXPECT_LT(distinct.size(), 300u);  // poses did share terms
+  EXPECT_GT(distinct.size(), 50u);   // and the term does depend on the pose
 }
 
 // A cabinet against nothing: a wall-like object 0.4 m from the room's top wall,
