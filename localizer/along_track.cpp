@@ -13,9 +13,10 @@ AlongTrackPreference along_track_preference(const LikelihoodField& field, const 
   }
   const std::size_t step =
       std::max<std::size_t>(1, points.x.size() / static_cast<std::size_t>(std::max(shifts.beams, 1)));
-  const std::size_t used = (points.x.size() + step - 1) / step;
+  const ScanPoints thinned = thinned_points(points, step);
+  const std::size_t used = thinned.x.size();
   const auto score = [&](const Pose2& pose) {
-    return field_log_likelihood(field, points, sensor_in_cells(field.geometry(), pose, mount), step);
+    return field_log_likelihood(field, thinned, sensor_in_cells(field.geometry(), pose, mount));
   };
   const double at_base = score(base);
   double best_shifted = -std::numeric_limits<double>::infinity();

@@ -61,11 +61,12 @@ std::vector<Pose2> GlobalProposals::propose(const LikelihoodField& field, const 
     return {};
   }
   const std::size_t step = std::max<std::size_t>(1, points.x.size() / static_cast<std::size_t>(std::max(beams, 1)));
+  const ScanPoints thinned = thinned_points(points, step);
   std::vector<std::pair<double, Pose2>> scored;
   scored.reserve(static_cast<std::size_t>(candidates));
   for (int k = 0; k < candidates; ++k) {
     const Pose2 pose = uniform(rng);
-    scored.emplace_back(field_log_likelihood(field, points, sensor_in_cells(geometry_, pose, mount), step), pose);
+    scored.emplace_back(field_log_likelihood(field, thinned, sensor_in_cells(geometry_, pose, mount)), pose);
   }
   const std::size_t n = std::min(scored.size(), static_cast<std::size_t>(keep));
   std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(n), scored.end(),

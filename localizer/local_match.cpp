@@ -9,17 +9,6 @@ namespace slamer {
 
 namespace {
 
-// The scan thinned once: the grid places each heading's points in cells and
-// sums them at every shift; the refinement sums them at each pose it tries.
-ScanPoints thin(const ScanPoints& points, std::size_t step) {
-  ScanPoints thinned;
-  for (std::size_t i = 0; i < points.x.size(); i += step) {
-    thinned.x.push_back(points.x[i]);
-    thinned.y.push_back(points.y[i]);
-  }
-  return thinned;
-}
-
 struct Scored {
   Pose2 sensor;  // cells, rad
   double score;
@@ -42,7 +31,7 @@ Scored refine(const LikelihoodField& field, const ScanPoints& points, const Pose
             std::abs(t.theta - start.theta) > turn) {
           continue;  // the window bounds the refinement too
         }
-        const double s = field_log_likelihood(field, points, t, 1);
+        const double s = field_log_likelihood(field, points, t);
         if (s > from.score) {
           from = {t, s};
         }
@@ -85,7 +74,7 @@ LocalMatch match_locally(const LikelihoodField& field, const ScanPoints& points,
   const int side = 2 * shifts + 1;
   const auto index = [&](int k, int iy, int ix) { return ((k + turns) * side + (iy + shifts)) * side + ix + shifts; };
   std::vector<Scored> grid(static_cast<std::size_t>((2 * turns + 1) * side * side));
-  const ScanPoints thinned = thin(points, step);
+  const ScanPoints thinned = thinned_points(points, step);
   for (int k = -turns; k <= turns; ++k) {
     const double theta = start.theta + k * turn_step;
     const LikelihoodField::CellScan placed = field.place_cells(
@@ -151,8 +140,8 @@ Pose2 climb_locally(const LikelihoodField& field, const ScanPoints& points, cons
   const std::size_t step = std::max<std::size_t>(1, points.x.size() / static_cast<std::size_t>(std::max(beams, 1)));
   const Pose2 sensor = sensor_in_cells(g, start, mount);
   const double step_cells = 2.0 * shift / g.resolution;  // refine() starts at half the grid's step
-  const ScanPoints thinned = thin(points, step);
-  const Scored from{sensor, field_log_likelihood(field, thinned, sensor, 1)};
+  const ScanPoints thinned = thinned_points(points, step);
+  const Scored from{sensor, field_log_likelihood(field, thinned, sensor)};
   const Scored climbed = refine(field, thinned, sensor, 2.0 * step_cells, 4.0 * turn, step_cells, 2.0 * turn, from);
   return base_in_map(g, climbed.sensor, mount);
 }

@@ -1,5 +1,6 @@
 #include "localizer/scan_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace slamer {
@@ -58,17 +59,8 @@ double scan_fit(const DistanceField& obstacles, const ScanPoints& points, const 
   return used > 0 ? static_cast<double>(fitting) / static_cast<double>(used) : 0.0;
 }
 
-double field_log_likelihood(const LikelihoodField& field, const ScanPoints& points, const Pose2& sensor,
-                            std::size_t step) {
-  // Placed as GridPlacer places them; sum_placed adds point k of the thinned
-  // scan into running sum k mod 4 as sum_terms does, so the sum is the same.
-  const auto c = static_cast<float>(std::cos(sensor.theta));
-  const auto s = static_cast<float>(std::sin(sensor.theta));
-  const auto tx = static_cast<float>(sensor.x);
-  const auto ty = static_cast<float>(sensor.y);
-  if (step <= 1) {
-    return field.sum_placed(points.x.data(), points.y.data(), points.x.size(), c, s, tx, ty);
-  }
+ScanPoints thinned_points(const ScanPoints& points, std::size_t step) {
+  step = std::max<std::size_t>(step, 1);
   ScanPoints thinned;
   thinned.x.reserve(points.x.size() / step + 1);
   thinned.y.reserve(points.x.size() / step + 1);
@@ -76,7 +68,15 @@ double field_log_likelihood(const LikelihoodField& field, const ScanPoints& poin
     thinned.x.push_back(points.x[i]);
     thinned.y.push_back(points.y[i]);
   }
-  return field.sum_placed(thinned.x.data(), thinned.y.data(), thinned.x.size(), c, s, tx, ty);
+  return thinned;
+}
+
+double field_log_likelihood(const LikelihoodField& field, const ScanPoints& points, const Pose2& sensor) {
+  // Placed as GridPlacer places them, summed as sum_terms sums (point k into
+  // running sum k mod 4).
+  return field.sum_placed(points.x.data(), points.y.data(), points.x.size(), static_cast<float>(std::cos(sensor.theta)),
+                          static_cast<float>(std::sin(sensor.theta)), static_cast<float>(sensor.x),
+                          static_cast<float>(sensor.y));
 }
 
 }  // namespace slamer

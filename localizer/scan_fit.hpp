@@ -29,10 +29,13 @@ Pose2 sensor_in_cells(const GridGeometry& geometry, const Pose2& base, const Pos
 double scan_fit(const DistanceField& obstacles, const ScanPoints& points, const Pose2& sensor, double fit_distance,
                 std::size_t step = 1);
 
-// Sum of the likelihood field's log-likelihoods of `points` (every `step`-th)
-// for a sensor at `sensor` (sensor_in_cells), off-map points at the field's
-// off-map value: how global proposals and local matches score a pose.
-double field_log_likelihood(const LikelihoodField& field, const ScanPoints& points, const Pose2& sensor,
-                            std::size_t step);
+// Every `step`-th of `points` (a step of 0 as 1): a scan thinned once for the
+// many poses a search scores it at.
+ScanPoints thinned_points(const ScanPoints& points, std::size_t step);
+
+// Sum of the likelihood field's log-likelihoods of `points` for a sensor at
+// `sensor` (sensor_in_cells), off-map points at the field's off-map value:
+// how global proposals and local matches score a pose.
+double field_log_likelihood(const LikelihoodField& field, const ScanPoints& points, const Pose2& sensor);
 
 }  // namespace slamer
