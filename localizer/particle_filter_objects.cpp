@@ -110,6 +110,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
   std::vector<Cell> cells;        // sample cells on the map; off-map samples are left out
   std::vector<Cell> inner_cells;  // of the samples between the ends, if they may be used
   std::vector<int32_t> key;       // every sample's cell, off the map (-1, -1): the memo's key
+  const bool use_memo = memo && class_terms == nullptr;
   for (const PreparedObjects::Object& o : objects.objects) {
     cells.clear();
     inner_cells.clear();
@@ -128,7 +129,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
         key.insert(key.end(), {-1, -1});
       }
     }
-    if (memo && class_terms == nullptr) {
+    if (use_memo) {
       if (const auto known = o.weight_by_cells.find(key); known != o.weight_by_cells.end()) {
         total += known->second;
         continue;
@@ -155,7 +156,7 @@ double ParticleFilter::objects_log_likelihood(const Pose2& pose, const PreparedO
     }
     const double weight = options_.slamer.object_weight * log_sum_exp(terms);
     total += weight;
-    if (memo && class_terms == nullptr) {
+    if (use_memo) {
       o.weight_by_cells.emplace(key, weight);
     }
     if (class_terms != nullptr) {
